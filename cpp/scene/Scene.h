@@ -1,0 +1,130 @@
+// The validated description of one experiment, read from a YAML scene file.
+// Everything here is plain data (no DOLFINx), so the parser and `cellphase check`
+// stay cheap to build and to test.
+#pragma once
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cellphase::scene
+{
+
+/// Rectangle (2D) or box (3D) domain meshed with triangles / tetrahedra.
+struct Domain
+{
+  int dim = 2;
+  std::array<double, 3> lower{0, 0, 0};
+  std::array<double, 3> upper{1, 1, 0};
+  std::array<int, 3> resolution{16, 16, 0}; ///< base cells per axis
+  double volume() const;
+};
+
+/// Boundary condition of the phase field: phi = -1 (2.19) or homogeneous Neumann.
+enum class PhiBoundary { dirichlet, neumann };
+
+enum class ShapeKind { circle, ellipse, cassini, expression };
+
+/// One cell's initial shape; its phase field is tanh(-r/(sqrt2 eps)) with r the signed
+/// distance (negative inside), eq. (2.12).
+struct Cell
+{
+  std::string name;               ///< "cells[i]" unless the scene names it
+  ShapeKind shape = ShapeKind::circle;
+  std::array<double, 3> center{0, 0, 0};
+  double radius = 0;              ///< circle / sphere
+  std::array<double, 3> semi_axes{0, 0, 0}; ///< ellipse / ellipsoid
+  double rotation = 0;            ///< radians, about the z axis
+  double cassini_a = 0, cassini_b = 0; ///< Cassini oval |x-f1||x-f2| = b^2, foci at +-a
+  std::string expression;         ///< signed distance in x, y, z (muparser syntax)
+};
+
+/// The phase-field / membrane model of section 2.5 and 3.4.1.
+enum class Model
+{
+  allen_cahn,          ///< (2.24)
+  allen_cahn_volume,   ///< (2.26)-(2.27)
+  cahn_hilliard,       ///< (2.25)
+  helfrich_lagrange,   ///< (3.25)-(3.29)
+  helfrich_penalty,    ///< (3.30)-(3.32)
+  helfrich_hm1         ///< (3.33)-(3.35)
+};
+
+/// How the nonlinear terms W'(phi), W''(phi) mu are treated in time.
+enum class Linearisation
+{
+  taylor,     ///< first-order Taylor expansion about phi^n (section 5.3): matrix changes every step
+  stabilised  ///< explicit nonlinearity + S (phi^{n+1} - phi^n): matrix constant between remeshes
+};
+
+struct PhaseField
+{
+  Model model = Model::helfrich_penalty;
+  double mobility = 1.0;             ///< gamma
+  double spontaneous_curvature = 0;  ///< H0 (dimensionless)
+  double penalty_volume = 0;         ///< p1 of (3.30)
+  double penalty_area = 0;           ///< p2 of (3.30), (3.33)
+  double constraint_relaxation = 0.5; ///< drift correction of the multipliers, (1/2tau) in 5.3
+};
+
+/// Physical parameters (SI) from which the dimensionless numbers follow, (3.12)-(3.17).
+struct PhysicalUnits
+{
+  std::optional<double> length, velocity, density, viscosity, bending_rigidity, surface_tension;
+};
+
+/// Dimensionless numbers used by the equations.
+struct Numbers
+{
+  double Re = 0, Ca = 1, Be = 1;
+  std::optional<double> time_scale_s; ///< L/V when units are given
+};
+
+struct Mesh
+{
+  int remesh_every = 10;             ///< steps between rebuilds from the base mesh; 0 = only at start
+  double points_across_interface = 6;
+  double refine_threshold = 0.95;    ///< cells with |phi| below this are refined
+  int max_levels = 8;                ///< safety cap on refinement levels
+};
+
+struct Numerics
+{
+  double epsilon = 0.03;
+  double dt = 1e-3;
+  double end_time = 1.0;
+  Linearisation linearisation = Linearisation::taylor;
+  double stabilisation = 2.0;        ///< S of the stabilised scheme
+  Mesh mesh;
+  std::map<std::string, std::string> petsc; ///< options without the leading '-' and prefix
+};
+
+struct Output
+{
+  std::string directory = "output";
+  int every = 10;                    ///< steps between field writes; 0 = never
+  std::vector<std::string> fields{"phi"};
+  bool progress = true;
+};
+
+struct Scene
+{
+  std::string source;                ///< file the scene came from
+  Domain domain;
+  PhiBoundary phi_boundary = PhiBoundary::dirichlet;
+  std::vector<Cell> cells;
+  PhaseField phase_field;
+  PhysicalUnits units;
+  Numbers numbers;
+  Numerics numerics;
+  Output output;
+};
+
+const char* to_string(Model m);
+const char* to_string(Linearisation l);
+/// Fields a model solves for, in the order of its mixed space (phi first).
+std::vector<std::string> model_fields(Model m);
+bool is_helfrich(Model m);
+
+} // namespace cellphase::scene

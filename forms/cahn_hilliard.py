@@ -1,0 +1,27 @@
+# Cahn-Hilliard equation (2.25) as a split system for (phi, mu):
+#   d_t phi = div(gamma grad mu),   mu = -eps Lap phi + W'(phi)/eps
+# with natural boundary conditions grad mu . n = 0.
+from ufl import (Coefficient, FunctionSpace, TestFunctions, TrialFunctions, dx, grad, inner,
+                 split)
+
+from cellphase_ufl import QDEG, W, constants, dW, ddW, domain, mixed
+
+Wsp = FunctionSpace(domain, mixed(2))
+(phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
+u0 = Coefficient(Wsp)  # (phi^n, mu^n)
+phi0, mu0 = split(u0)
+dt, eps, gamma, S = constants("dt", "eps", "gamma", "S")
+dxq = dx(metadata={"quadrature_degree": QDEG})
+
+common = (phi * psi / dt + gamma * inner(grad(mu), grad(psi))
+          + mu * nu - eps * inner(grad(phi), grad(nu))) * dx
+# Taylor linearisation of W'(phi) about phi^n (section 5.3)
+a = common - ddW(phi0) / eps * phi * nu * dxq
+L = phi0 * psi / dt * dx + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dxq
+# Stabilised: W'(phi^n) + S (phi - phi^n), constant matrix
+a_stab = common - S / eps * phi * nu * dx
+L_stab = phi0 * psi / dt * dx + (dW(phi0) - S * phi0) / eps * nu * dxq
+
+energy = (eps / 2 * inner(grad(phi0), grad(phi0)) + W(phi0) / eps) * dxq
+
+forms = [a, L, a_stab, L_stab, energy]

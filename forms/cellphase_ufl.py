@@ -1,0 +1,62 @@
+"""Shared UFL vocabulary of the cellphase forms: cell type, elements, double-well potentials.
+
+Every form file is compiled twice by FFCx (2D triangles and 3D tetrahedra); the build sets
+CELLPHASE_DIM, and this module picks the cell from it so the physics is written once.
+"""
+import math
+import os
+
+from ufl import (Constant, FiniteElement, Mesh, MixedElement, VectorElement, tetrahedron,
+                 triangle)
+
+DIM = int(os.environ.get("CELLPHASE_DIM", "2"))
+cell = {2: triangle, 3: tetrahedron}[DIM]
+domain = Mesh(VectorElement("Lagrange", cell, 1))
+P2 = FiniteElement("Lagrange", cell, 2)
+
+
+def mixed(n):
+    """n scalar P2 fields solved together (phi first)."""
+    return MixedElement([P2] * n)
+
+
+def constants(*names):
+    """Scalar constants bound by name from C++ (extra names are ignored there)."""
+    return [Constant(domain) for _ in names]
+
+
+# Double-well potential W(phi) = (phi^2-1)^2/4 and its derivatives, section 2.5.1.
+def W(phi):
+    return (phi**2 - 1) ** 2 / 4
+
+
+def dW(phi):
+    return (phi**2 - 1) * phi
+
+
+def ddW(phi):
+    return 3 * phi**2 - 1
+
+
+# Modified double well W0 of the Helfrich energy with spontaneous curvature H0, (3.9)/(3.22).
+def dW0(phi, eps, H0):
+    return (phi**2 - 1) * (phi + math.sqrt(2) * H0 * eps)
+
+
+def ddW0(phi, eps, H0):
+    return 3 * phi**2 + 2 * math.sqrt(2) * H0 * eps * phi - 1
+
+
+def dddW0(phi, eps, H0):
+    return 6 * phi + 2 * math.sqrt(2) * H0 * eps
+
+
+def kappa_of(phi, mu, H0):
+    """Diffuse mean curvature kappa = -eps Lap phi + W'(phi)/eps (3.24) written with the
+    Helfrich mu = eps Lap phi - W0'(phi)/eps (3.23): kappa = -mu - sqrt2 H0 (phi^2-1)."""
+    return -mu - math.sqrt(2) * H0 * (phi**2 - 1)
+
+
+# Quadrature degree for the nonlinear terms: the automatic estimate (P2 to the 4th power and
+# more) costs much assembly time and buys no accuracy over the interpolation error.
+QDEG = 6

@@ -1,0 +1,43 @@
+# H^-1 gradient flow of the diffuse Helfrich energy with an area penalty, (3.33)-(3.35):
+#   d_t phi = gamma Lap w,                                                          (3.34)
+#   w       = 1/Be ( Lap mu - W0''(phi) mu / eps^2 + p2 (A - A0) kappa ),           (3.35)
+#   mu      = eps Lap phi - W0'(phi)/eps,                                           (3.23)
+# natural boundary conditions grad w . n = grad mu . n = 0 keep int phi exactly.
+# lam_a = p2 (A(phi^n) - A0) is explicit (computed in C++).
+from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
+                 TrialFunctions, dx, grad, inner, split)
+
+from cellphase_ufl import (P2, QDEG, constants, dddW0, ddW0, domain, dW0, kappa_of, mixed)
+
+Wsp = FunctionSpace(domain, mixed(3))
+(phi, mu, w), (psi, nu, zeta) = TrialFunctions(Wsp), TestFunctions(Wsp)
+u0 = Coefficient(Wsp)  # (phi^n, mu^n, w^n)
+phi0, mu0, w0 = split(u0)
+dt, eps, gamma, Be, H0, S, lam_a = constants("dt", "eps", "gamma", "Be", "H0", "S", "lam_a")
+dxq = dx(metadata={"quadrature_degree": QDEG})
+kappa0 = kappa_of(phi0, mu0, H0)
+
+common = (phi * psi / dt + gamma * inner(grad(w), grad(psi))
+          + w * zeta + 1 / Be * inner(grad(mu), grad(zeta))
+          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx
+rhs_common = phi0 * psi / dt * dx + lam_a / Be * kappa0 * zeta * dxq
+
+# Taylor linearisation as in helfrich_l2.py (section 5.3)
+a = common + (1 / (Be * eps**2) * (ddW0(phi0, eps, H0) * mu + dddW0(phi0, eps, H0) * mu0 * phi)
+              * zeta + ddW0(phi0, eps, H0) / eps * phi * nu) * dxq
+L = rhs_common + (1 / (Be * eps**2) * dddW0(phi0, eps, H0) * mu0 * phi0 * zeta
+                  - (dW0(phi0, eps, H0) - ddW0(phi0, eps, H0) * phi0) / eps * nu) * dxq
+
+# Stabilised constant-matrix variant as in helfrich_l2.py
+a_stab = common + (1 / (Be * eps**2) * S * mu * zeta + S / eps * phi * nu) * dx
+L_stab = rhs_common + (- 1 / (Be * eps**2) * (ddW0(phi0, eps, H0) - S) * mu0 * zeta
+                       - (dW0(phi0, eps, H0) - S * phi0) / eps * nu) * dxq
+
+# Initial mu from phi^0 (L2 projection of (3.23))
+V = FunctionSpace(domain, P2)
+m, q = TrialFunction(V), TestFunction(V)
+phi_init = Coefficient(V)
+a_mu = m * q * dx
+L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q) * dxq
+
+forms = [a, L, a_stab, L_stab, a_mu, L_mu]

@@ -1,0 +1,56 @@
+# L2 gradient flow of the diffuse Helfrich energy with volume and area constraints,
+# (3.26)-(3.27) with Lagrange multipliers or (3.31)-(3.32) with penalties:
+#   d_t phi = -gamma/Be ( Lap mu - W0''(phi) mu / eps^2 + lam_v + lam_a kappa^n ),   (3.27)
+#   mu      = eps Lap phi - W0'(phi)/eps,                                          (3.23)
+# boundary conditions phi = -1 (or natural), grad mu . n = 0 (section 3.4.1).
+# lam_v, lam_a are explicit: the 2x2 system (3.28)-(3.29) for the multipliers, or
+# p1 (V - V0), p2 (A - A0) for the penalties; both are computed in C++ from phi^n, mu^n.
+from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
+                 TrialFunctions, dx, grad, inner, split)
+
+from cellphase_ufl import (P2, QDEG, constants, dddW0, ddW0, domain, dW0, kappa_of, mixed)
+
+Wsp = FunctionSpace(domain, mixed(2))
+(phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
+u0 = Coefficient(Wsp)  # (phi^n, mu^n)
+phi0, mu0 = split(u0)
+dt, eps, gamma, Be, H0, S, lam_v, lam_a = constants(
+    "dt", "eps", "gamma", "Be", "H0", "S", "lam_v", "lam_a")
+dxq = dx(metadata={"quadrature_degree": QDEG})
+g = gamma / Be
+kappa0 = kappa_of(phi0, mu0, H0)
+
+# Linear part shared by both time discretisations (Lap mu integrated by parts)
+common = (phi * psi / dt - g * inner(grad(mu), grad(psi))
+          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx
+rhs_common = phi0 * psi / dt * dx - g * (lam_v + lam_a * kappa0) * psi * dxq
+
+# Taylor linearisation (section 5.3):
+#   W0''(phi) mu ~ W0''(phi^n) mu + W0'''(phi^n) mu^n (phi - phi^n)
+#   W0'(phi)     ~ W0'(phi^n) + W0''(phi^n)(phi - phi^n)
+a = common + (- g / eps**2 * (ddW0(phi0, eps, H0) * mu + dddW0(phi0, eps, H0) * mu0 * phi) * psi
+              + ddW0(phi0, eps, H0) / eps * phi * nu) * dxq
+L = rhs_common + (- g / eps**2 * dddW0(phi0, eps, H0) * mu0 * phi0 * psi
+                  - (dW0(phi0, eps, H0) - ddW0(phi0, eps, H0) * phi0) / eps * nu) * dxq
+
+# Stabilised: W0''(phi) mu ~ S mu + (W0''(phi^n) - S) mu^n,  W0'(phi) ~ W0'(phi^n) + S(phi - phi^n).
+# S = 2 = W0''(-1) makes both exact in the bulk phase; the matrix is constant.
+a_stab = common + (- g / eps**2 * S * mu * psi + S / eps * phi * nu) * dx
+L_stab = rhs_common + (g / eps**2 * (ddW0(phi0, eps, H0) - S) * mu0 * psi
+                       - (dW0(phi0, eps, H0) - S * phi0) / eps * nu) * dxq
+
+# Integrals of the multiplier system (3.28)-(3.29), with Lap mu integrated by parts
+# (grad mu . n = 0, kappa ~ 0 on the boundary):
+int_kappa = kappa0 * dxq
+int_kappa2 = kappa0**2 * dxq
+rhs_volume = ddW0(phi0, eps, H0) * mu0 / eps**2 * dxq
+rhs_area = (inner(grad(kappa0), grad(mu0)) + kappa0 * ddW0(phi0, eps, H0) * mu0 / eps**2) * dxq
+
+# Initial mu from phi^0: L2 projection of eps Lap phi - W0'(phi)/eps (3.23)
+V = FunctionSpace(domain, P2)
+m, q = TrialFunction(V), TestFunction(V)
+phi_init = Coefficient(V)
+a_mu = m * q * dx
+L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q) * dxq
+
+forms = [a, L, a_stab, L_stab, int_kappa, int_kappa2, rhs_volume, rhs_area, a_mu, L_mu]
