@@ -1,1 +1,166 @@
-int main() { return 0; }
+// cellphase: phase-field simulations of vesicles and cells.
+//   cellphase run SCENE [--set key=value ...]
+//   cellphase check SCENE [--set key=value ...]
+#include "app/Simulation.h"
+#include "scene/Check.h"
+#include "scene/SceneLoader.h"
+#include "solve/LinearSolver.h"
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* usage = R"(cellphase - finite-element phase-field simulations of vesicles and cells
+
+Usage:
+  cellphase run SCENE [--set KEY=VALUE ...]    run the experiment described by SCENE
+  cellphase check SCENE [--set KEY=VALUE ...]  validate SCENE and print the derived numbers,
+                                               mesh resolution and expected size, then exit
+  cellphase --help                             this text
+  cellphase --version
+
+SCENE is a YAML file (see docs/scenes.md). --set overrides one key of the scene, with the
+value written as in YAML, for example:
+  cellphase run demos/vesicle-relaxation/scene.yaml --set numerics.epsilon=0.02 \
+      --set output.directory=eps002
+Cells are addressed by index: --set cells.0.radius=0.8.
+
+A run writes into output.directory:
+  observables.csv   one row per step: time, volume, membrane length/area, energies,
+                    centre of mass, circularity, dofs, wall time per part of the step
+  fields.xdmf/.h5   the fields every output.every steps (open in ParaView)
+Run in parallel with: mpirun -n 2 cellphase run SCENE
+
+Exit status: 0 success, 2 invalid scene or arguments, 3 numerical failure.
+)";
+
+struct Arguments
+{
+  std::string command, scene;
+  std::vector<std::string> overrides;
+};
+
+/// Parse argv; returns false with a message for bad usage.
+bool parse(int argc, char** argv, Arguments& args, std::string& error)
+{
+  if (argc < 2)
+  {
+    error = "missing command (run or check)";
+    return false;
+  }
+  args.command = argv[1];
+  for (int i = 2; i < argc; ++i)
+  {
+    std::string a = argv[i];
+    if (a == "--set")
+    {
+      if (i + 1 >= argc || std::strchr(argv[i + 1], '=') == nullptr)
+      {
+        error = "--set needs KEY=VALUE, for example --set numerics.dt=1e-3";
+        return false;
+      }
+      args.overrides.push_back(argv[++i]);
+    }
+    else if (a.rfind("--set=", 0) == 0)
+      args.overrides.push_back(a.substr(6));
+    else if (a.rfind("-", 0) == 0)
+    {
+      error = "unknown option '" + a + "' (allowed: --set KEY=VALUE)";
+      return false;
+    }
+    else if (args.scene.empty())
+      args.scene = a;
+    else
+    {
+      error = "more than one scene file given ('" + args.scene + "' and '" + a + "')";
+      return false;
+    }
+  }
+  if (args.command != "run" && args.command != "check")
+  {
+    error = "unknown command '" + args.command + "' (allowed: run, check)";
+    return false;
+  }
+  if (args.scene.empty())
+  {
+    error = "missing scene file after '" + args.command + "'";
+    return false;
+  }
+  return true;
+}
+
+int run(const cellphase::scene::Scene& scene)
+{
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  int status = 0;
+  try
+  {
+    cellphase::Simulation sim(scene, MPI_COMM_WORLD);
+    sim.run();
+  }
+  catch (const cellphase::NumericalFailure& e)
+  {
+    if (rank == 0)
+      std::fprintf(stderr, "error: %s\n", e.what());
+    status = 3;
+  }
+  catch (const cellphase::SolverError& e)
+  {
+    if (rank == 0)
+      std::fprintf(stderr, "error: numerical failure: %s\n", e.what());
+    status = 3;
+  }
+  return status;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")
+                    || !std::strcmp(argv[1], "help")))
+  {
+    std::fputs(usage, stdout);
+    return 0;
+  }
+  if (argc >= 2 && !std::strcmp(argv[1], "--version"))
+  {
+    std::puts("cellphase 0.1 (DOLFINx 0.5)");
+    return 0;
+  }
+  Arguments args;
+  std::string error;
+  if (!parse(argc, argv, args, error))
+  {
+    std::fprintf(stderr, "error: %s\nRun 'cellphase --help' for usage.\n", error.c_str());
+    return 2;
+  }
+
+  cellphase::scene::Scene scene;
+  try
+  {
+    scene = cellphase::scene::load_scene(args.scene, args.overrides);
+  }
+  catch (const cellphase::scene::SceneError& e)
+  {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  if (args.command == "check")
+  {
+    std::fputs(cellphase::scene::check_report(scene).c_str(), stdout);
+    return 0;
+  }
+
+  // Only a run needs MPI and PETSc; DOLFINx objects are destroyed inside run().
+  int provided;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  PetscInitializeNoArguments();
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr); // errors become messages, not aborts
+  const int status = run(scene);
+  PetscFinalize();
+  MPI_Finalize();
+  return status;
+}

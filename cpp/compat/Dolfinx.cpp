@@ -1,0 +1,212 @@
+#include "compat/Dolfinx.h"
+#include <dolfinx/geometry/BoundingBoxTree.h>
+#include <dolfinx/geometry/utils.h>
+#include <dolfinx/refinement/refine.h>
+#include <numeric>
+#include <xtensor/xarray.hpp>
+
+namespace cellphase::compat
+{
+using namespace dolfinx;
+
+std::shared_ptr<Mesh> create_base_mesh(MPI_Comm comm, const scene::Domain& d)
+{
+  const auto& lo = d.lower;
+  const auto& up = d.upper;
+  const auto& n = d.resolution;
+  if (d.dim == 2)
+    return std::make_shared<Mesh>(mesh::create_rectangle(
+        comm, {{{lo[0], lo[1]}, {up[0], up[1]}}},
+        {std::size_t(n[0]), std::size_t(n[1])}, mesh::CellType::triangle,
+        mesh::GhostMode::none, mesh::DiagonalType::crossed));
+  return std::make_shared<Mesh>(mesh::create_box(
+      comm, {{{lo[0], lo[1], lo[2]}, {up[0], up[1], up[2]}}},
+      {std::size_t(n[0]), std::size_t(n[1]), std::size_t(n[2])}, mesh::CellType::tetrahedron,
+      mesh::GhostMode::none));
+}
+
+std::shared_ptr<Mesh> refine_cells(Mesh& m, const std::vector<std::int32_t>& cells)
+{
+  const int tdim = m.topology().dim();
+  m.topology_mutable().create_entities(1);
+  m.topology_mutable().create_connectivity(tdim, 1);
+  auto edges = mesh::compute_incident_entities(m, std::span<const std::int32_t>(cells), tdim, 1);
+  // No redistribution: children stay with their parent's rank, so that point evaluation
+  // between two refinements of the same base mesh stays rank-local.
+  return std::make_shared<Mesh>(refinement::refine(m, std::span<const std::int32_t>(edges), false));
+}
+
+std::shared_ptr<Mesh> refine_uniform(const Mesh& m)
+{
+  return std::make_shared<Mesh>(refinement::refine(m, false));
+}
+
+std::shared_ptr<Space> create_space(ufcx_space_fn fn, const std::string& name,
+                                    std::shared_ptr<const Mesh> mesh)
+{
+  // 0.5.2 wants a mutable mesh here although it only reads it.
+  return std::make_shared<Space>(
+      fem::create_functionspace(fn, name, std::const_pointer_cast<Mesh>(mesh)));
+}
+
+std::shared_ptr<Form> create_form(const ufcx_form& form,
+                                  const std::vector<std::shared_ptr<const Space>>& spaces,
+                                  const CoefficientMap& coefficients, const ConstantMap& constants,
+                                  std::shared_ptr<const Mesh> mesh)
+{
+  // Keep only the names the form uses: create_form rejects missing names, not extra ones,
+  // but being explicit makes the error message point at the form.
+  const std::map<fem::IntegralType, const mesh::MeshTags<int>*> subdomains;
+  return std::make_shared<Form>(
+      fem::create_form<T>(form, spaces, coefficients, constants, subdomains, mesh));
+}
+
+double assemble_scalar(const Form& form)
+{
+  T local = fem::assemble_scalar(form), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPIU_SCALAR, MPI_SUM, form.mesh()->comm());
+  return global;
+}
+
+void interpolate(Function& u, const PointFunction& f)
+{
+  u.interpolate(
+      [&f](const xt::xtensor<double, 2>& x) -> xt::xarray<T>
+      {
+        xt::xarray<T> v = xt::empty<T>({x.shape(1)});
+        for (std::size_t i = 0; i < x.shape(1); ++i)
+          v(i) = f(x(0, i), x(1, i), x(2, i));
+        return v;
+      });
+}
+
+namespace
+{
+std::vector<std::int32_t> all_local_cells(const Mesh& m)
+{
+  auto map = m.topology().index_map(m.topology().dim());
+  std::vector<std::int32_t> cells(map->size_local() + map->num_ghosts());
+  std::iota(cells.begin(), cells.end(), 0);
+  return cells;
+}
+
+/// Locates points (N x 3) in local cells of a mesh; bounding-box trees are built once.
+class PointLocator
+{
+public:
+  explicit PointLocator(std::shared_ptr<const Mesh> m)
+      : mesh_(m), cells_(all_local_cells(*m)),
+        tree_(*m, m->topology().dim(), cells_, 1e-10)
+  {
+  }
+
+  std::vector<std::int32_t> locate(std::span<const double> pts) const
+  {
+    const std::size_t n = pts.size() / 3;
+    auto candidates = geometry::compute_collisions(tree_, pts);
+    auto colliding = geometry::compute_colliding_cells(*mesh_, candidates, pts);
+    std::vector<std::int32_t> cells(n, -1);
+    std::vector<std::size_t> missed;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (colliding.num_links(i) > 0)
+        cells[i] = colliding.links(i)[0];
+      else
+        missed.push_back(i);
+    }
+    if (!missed.empty())
+    {
+      // Round-off misses on cell boundaries: take the closest local cell.
+      if (!midpoint_tree_)
+        midpoint_tree_ = std::make_unique<geometry::BoundingBoxTree>(
+            geometry::create_midpoint_tree(*mesh_, mesh_->topology().dim(), cells_));
+      std::vector<double> mp;
+      for (auto i : missed)
+        mp.insert(mp.end(), pts.begin() + 3 * i, pts.begin() + 3 * i + 3);
+      auto closest = geometry::compute_closest_entity(tree_, *midpoint_tree_, *mesh_, mp);
+      for (std::size_t j = 0; j < missed.size(); ++j)
+        cells[missed[j]] = closest[j];
+    }
+    return cells;
+  }
+
+private:
+  std::shared_ptr<const Mesh> mesh_;
+  std::vector<std::int32_t> cells_;
+  geometry::BoundingBoxTree tree_;
+  mutable std::unique_ptr<geometry::BoundingBoxTree> midpoint_tree_;
+};
+} // namespace
+
+PointEvaluator make_evaluator(std::shared_ptr<const Function> u)
+{
+  auto locator = std::make_shared<PointLocator>(u->function_space()->mesh());
+  return [u, locator](std::span<const double> pts, std::span<double> values)
+  {
+    const std::size_t n = pts.size() / 3;
+    auto cells = locator->locate(pts);
+    u->eval(pts, {n, 3}, cells, values, {n, 1});
+  };
+}
+
+void transfer(std::shared_ptr<const Function> from, Function& to)
+{
+  auto V = to.function_space();
+  auto cells = all_local_cells(*V->mesh());
+  // interpolation_coords returns 3 rows (x, y, z) of N points; eval wants N rows of 3.
+  const std::vector<double> X = fem::interpolation_coords(*V->element(), *V->mesh(), cells);
+  const std::size_t n = X.size() / 3;
+  std::vector<double> pts(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d)
+      pts[3 * i + d] = X[d * n + i];
+  std::vector<double> values(n);
+  make_evaluator(from)(pts, values);
+  fem::interpolate(to, std::span<const T>(values), {1, n}, std::span<const std::int32_t>(cells));
+}
+
+std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, const Space& V)
+{
+  auto m = W.mesh();
+  const int tdim = m->topology().dim();
+  m->topology_mutable().create_connectivity(tdim - 1, tdim);
+  auto facets = mesh::exterior_facet_indices(m->topology());
+  auto Wsub = W.sub({sub});
+  return fem::locate_dofs_topological({*Wsub, V}, tdim - 1,
+                                      std::span<const std::int32_t>(facets));
+}
+
+std::vector<std::int32_t> boundary_dofs(const Space& V)
+{
+  auto m = V.mesh();
+  const int tdim = m->topology().dim();
+  m->topology_mutable().create_connectivity(tdim - 1, tdim);
+  auto facets = mesh::exterior_facet_indices(m->topology());
+  return fem::locate_dofs_topological(V, tdim - 1, std::span<const std::int32_t>(facets));
+}
+
+std::vector<double> cell_vertex_coordinates(const Mesh& m, std::int32_t cell)
+{
+  const auto& dofmap = m.geometry().dofmap();
+  auto x = m.geometry().x();
+  std::vector<double> out;
+  for (auto node : dofmap.links(cell))
+    out.insert(out.end(), x.begin() + 3 * node, x.begin() + 3 * node + 3);
+  return out;
+}
+
+std::int32_t num_owned_cells(const Mesh& m)
+{
+  return m.topology().index_map(m.topology().dim())->size_local();
+}
+
+std::int64_t num_global_cells(const Mesh& m)
+{
+  return m.topology().index_map(m.topology().dim())->size_global();
+}
+
+std::int64_t num_global_dofs(const Space& V)
+{
+  return V.dofmap()->index_map->size_global() * V.dofmap()->index_map_bs();
+}
+} // namespace cellphase::compat

@@ -1,0 +1,87 @@
+// The DOLFINx 0.5.2 calls whose signatures changed in later versions (xtensor callbacks,
+// create_form, refinement, point location) live behind these few functions, so that a
+// port to a newer DOLFINx touches this folder only.
+#pragma once
+#include "scene/Scene.h"
+#include <dolfinx.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/la/petsc.h>
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace cellphase
+{
+using T = PetscScalar;
+using Mesh = dolfinx::mesh::Mesh;
+using Space = dolfinx::fem::FunctionSpace;
+using Function = dolfinx::fem::Function<T>;
+using Form = dolfinx::fem::Form<T>;
+using Constant = dolfinx::fem::Constant<T>;
+using DirichletBC = dolfinx::fem::DirichletBC<T>;
+using BCs = std::vector<std::shared_ptr<const DirichletBC>>;
+using CoefficientMap = std::map<std::string, std::shared_ptr<const Function>>;
+using ConstantMap = std::map<std::string, std::shared_ptr<const Constant>>;
+using ufcx_space_fn = ufcx_function_space* (*)(const char*);
+
+/// A scalar field given by a formula of the position.
+using PointFunction = std::function<double(double x, double y, double z)>;
+/// Evaluates a scalar field at N points (coordinates as N rows of 3) into N values.
+using PointEvaluator = std::function<void(std::span<const double> points, std::span<double> values)>;
+} // namespace cellphase
+
+namespace cellphase::compat
+{
+/// Structured base mesh of the scene's rectangle/box (crossed diagonals in 2D for isotropy).
+/// Not ghosted: all refinements stay on the rank of their base cell.
+std::shared_ptr<Mesh> create_base_mesh(MPI_Comm comm, const scene::Domain& domain);
+
+/// Refine the given local cells (and what conformity needs) without redistributing.
+std::shared_ptr<Mesh> refine_cells(Mesh& mesh, const std::vector<std::int32_t>& cells);
+
+/// Split every cell once (the P2 nodes of mesh become the vertices of the result).
+std::shared_ptr<Mesh> refine_uniform(const Mesh& mesh);
+
+/// Function space created from an FFCx form's function space table.
+std::shared_ptr<Space> create_space(ufcx_space_fn fn, const std::string& name,
+                                    std::shared_ptr<const Mesh> mesh);
+
+/// Form bound to spaces, coefficients and constants by name (extra names are ignored).
+std::shared_ptr<Form> create_form(const ufcx_form& form,
+                                  const std::vector<std::shared_ptr<const Space>>& spaces,
+                                  const CoefficientMap& coefficients, const ConstantMap& constants,
+                                  std::shared_ptr<const Mesh> mesh = nullptr);
+
+/// Global value of a rank-0 form.
+double assemble_scalar(const Form& form);
+
+/// u <- f at u's interpolation points.
+void interpolate(Function& u, const PointFunction& f);
+
+/// Point evaluator of a function on its mesh. Points must lie in cells of the local part
+/// of the mesh, which holds for meshes refined from the same base mesh without
+/// redistribution; points just outside (round-off) use the closest cell.
+PointEvaluator make_evaluator(std::shared_ptr<const Function> u);
+
+/// to <- from, evaluating `from` at the interpolation points of `to` (meshes may differ).
+void transfer(std::shared_ptr<const Function> from, Function& to);
+
+/// Dofs of sub-space `sub` of the mixed space W on the domain boundary, as the pair
+/// (dofs in W, dofs in the collapsed sub-space V).
+std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, const Space& V);
+
+/// Dofs of a (non-mixed) space on the domain boundary.
+std::vector<std::int32_t> boundary_dofs(const Space& V);
+
+/// Coordinates (N x 3) of the vertices of each local cell, cell after cell.
+std::vector<double> cell_vertex_coordinates(const Mesh& mesh, std::int32_t cell);
+
+/// Number of locally owned cells.
+std::int32_t num_owned_cells(const Mesh& mesh);
+/// Global number of cells / degrees of freedom.
+std::int64_t num_global_cells(const Mesh& mesh);
+std::int64_t num_global_dofs(const Space& V);
+} // namespace cellphase::compat

@@ -1,0 +1,42 @@
+#include "io/ObservablesCsv.h"
+#include <stdexcept>
+
+namespace cellphase
+{
+ObservablesCsv::ObservablesCsv(const std::string& path, int dim, MPI_Comm comm) : dim_(dim)
+{
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  if (rank != 0)
+    return;
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_)
+    throw std::runtime_error("cannot write '" + path + "'");
+  std::fprintf(file_, "time,step,volume,surface,helfrich_energy,total_energy,energy_ch,"
+                      "center_x,center_y,center_z,circularity,phi_min,phi_max,lambda_volume,"
+                      "lambda_area,dofs,remesh_volume_change,wall_assembly,wall_factorise,"
+                      "wall_solve,wall_remesh,wall_output\n");
+}
+
+ObservablesCsv::~ObservablesCsv()
+{
+  if (file_)
+    std::fclose(file_);
+}
+
+void ObservablesCsv::write(const StepRecord& r)
+{
+  if (!file_)
+    return;
+  const auto& v = r.values;
+  std::fprintf(file_,
+               "%.10g,%d,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.10g,"
+               "%.10g,%.10g,%lld,%.3e,%.4g,%.4g,%.4g,%.4g,%.4g\n",
+               r.time, r.step, v.volume, v.surface, v.helfrich, v.total_energy, v.energy_ch,
+               v.center[0], v.center[1], dim_ == 3 ? v.center[2] : 0.0, v.circularity,
+               v.phi_min, v.phi_max, r.lam_v, r.lam_a, (long long)r.dofs,
+               r.remesh_volume_change, r.timings.assemble, r.timings.factorise, r.timings.solve,
+               r.remesh_time, r.output_time);
+  std::fflush(file_);
+}
+} // namespace cellphase

@@ -1,0 +1,33 @@
+// observables.csv: one row per step, written by rank 0 and flushed every row so that a
+// killed run keeps what it computed.
+#pragma once
+#include "physics/Observables.h"
+#include <cstdio>
+#include <string>
+
+namespace cellphase
+{
+struct StepRecord
+{
+  double time = 0;
+  int step = 0;
+  ObservableValues values;
+  std::int64_t dofs = 0;
+  double lam_v = 0, lam_a = 0;
+  StepTimings timings;
+  double remesh_time = 0, output_time = 0;
+  double remesh_volume_change = 0; ///< relative, after correction (0 if no remesh this step)
+};
+
+class ObservablesCsv
+{
+public:
+  ObservablesCsv(const std::string& path, int dim, MPI_Comm comm);
+  ~ObservablesCsv();
+  void write(const StepRecord& r);
+
+private:
+  std::FILE* file_ = nullptr;
+  int dim_;
+};
+} // namespace cellphase

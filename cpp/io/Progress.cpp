@@ -1,0 +1,56 @@
+#include "io/Progress.h"
+#include <cstdio>
+
+namespace cellphase
+{
+namespace
+{
+double since(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void format_duration(double s, char* buf, std::size_t n)
+{
+  if (s < 120)
+    std::snprintf(buf, n, "%.0f s", s);
+  else if (s < 7200)
+    std::snprintf(buf, n, "%.1f min", s / 60);
+  else
+    std::snprintf(buf, n, "%.1f h", s / 3600);
+}
+} // namespace
+
+Progress::Progress(MPI_Comm comm, double end_time, bool enabled)
+    : end_time_(end_time), start_(std::chrono::steady_clock::now()), last_(start_)
+{
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  enabled_ = enabled && rank == 0;
+}
+
+void Progress::update(int step, double time)
+{
+  if (!enabled_ || since(last_) < 5.0)
+    return;
+  last_ = std::chrono::steady_clock::now();
+  const double elapsed = since(start_);
+  const double fraction = time / end_time_;
+  char el[32], rem[32];
+  format_duration(elapsed, el, sizeof el);
+  format_duration(fraction > 0 ? elapsed * (1 - fraction) / fraction : 0, rem, sizeof rem);
+  std::printf("  step %6d  t = %-10.5g %5.1f%%  elapsed %s, about %s left\n", step, time,
+              100 * fraction, el, rem);
+  std::fflush(stdout);
+}
+
+void Progress::finish(int step, double time)
+{
+  if (!enabled_)
+    return;
+  char el[32];
+  format_duration(since(start_), el, sizeof el);
+  std::printf("  finished: %d steps to t = %g in %s\n", step, time, el);
+  std::fflush(stdout);
+}
+} // namespace cellphase

@@ -1,0 +1,28 @@
+// Meshes refined around the zero level set of phi, always rebuilt from the same base mesh
+// so that old and new meshes share their partition (point evaluation stays rank-local).
+#pragma once
+#include "compat/Dolfinx.h"
+#include "scene/Scene.h"
+
+namespace cellphase
+{
+class AdaptiveMesh
+{
+public:
+  AdaptiveMesh(const scene::Scene& scene, MPI_Comm comm);
+
+  /// The base mesh refined `levels()` times wherever |phi| < threshold somewhere in a cell.
+  std::shared_ptr<Mesh> build(const PointEvaluator& phi) const;
+  int levels() const { return levels_; }
+  std::shared_ptr<Mesh> base() const { return base_; }
+
+private:
+  std::vector<std::int32_t> mark(const Mesh& mesh, const PointEvaluator& phi, double h) const;
+
+  std::shared_ptr<Mesh> base_;
+  int levels_;
+  double h_base_;
+  double threshold_;
+  double band_; ///< width of the band |phi| < threshold
+};
+} // namespace cellphase

@@ -1,0 +1,63 @@
+#include "mesh/FieldTransfer.h"
+#include "physics/FormTable.h"
+#include <cmath>
+
+namespace cellphase
+{
+std::shared_ptr<Space> create_p2_space(std::shared_ptr<Mesh> mesh, int dim)
+{
+  return compat::create_space(observable_forms(dim).p2_space, "phi", mesh);
+}
+
+double integral_of(std::shared_ptr<const Function> f)
+{
+  auto V = f->function_space();
+  const int dim = V->mesh()->topology().dim();
+  auto form = compat::create_form(*observable_forms(dim).phi_integral, {}, {{"phi", f}}, {},
+                                  V->mesh());
+  return compat::assemble_scalar(*form);
+}
+
+FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, TransferReport& report)
+{
+  FieldMap fields;
+  for (const auto& [name, f] : old)
+  {
+    auto g = std::make_shared<Function>(V);
+    g->name = name;
+    compat::transfer(f, *g);
+    fields[name] = g;
+  }
+  auto phi_old = old.at("phi");
+  auto phi = fields.at("phi");
+  const double int_old = integral_of(phi_old), int_new = integral_of(phi);
+
+  // The correction shape (1 - phi^2) at the P2 nodes is its own P2 interpolant.
+  auto shape = std::make_shared<Function>(V);
+  {
+    auto p = phi->x()->array();
+    auto s = shape->x()->mutable_array();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      s[i] = std::max(0.0, 1 - p[i] * p[i]);
+  }
+  const double int_shape = integral_of(shape);
+  if (int_shape > 0)
+  {
+    const double c = (int_old - int_new) / int_shape;
+    auto p = phi->x()->mutable_array();
+    auto s = shape->x()->array();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p[i] += c * s[i];
+  }
+  // Relative to the cell volume int (phi+1)/2 = (int phi + |Omega|)/2.
+  const double omega = [&] {
+    auto one = std::make_shared<Function>(V);
+    one->x()->set(1.0);
+    return integral_of(one);
+  }();
+  const double cell_volume = (int_old + omega) / 2;
+  report.volume_change_interpolated = std::abs(int_new - int_old) / 2 / cell_volume;
+  report.volume_change_corrected = std::abs(integral_of(phi) - int_old) / 2 / cell_volume;
+  return fields;
+}
+} // namespace cellphase

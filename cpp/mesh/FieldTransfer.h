@@ -1,0 +1,23 @@
+// Moving the fields to a new mesh with phi's integral (the cell volumes, 3.10) kept.
+#pragma once
+#include "compat/Dolfinx.h"
+#include "physics/PhaseFieldModule.h"
+
+namespace cellphase
+{
+struct TransferReport
+{
+  double volume_change_interpolated = 0; ///< relative change of int phi~ by interpolation alone
+  double volume_change_corrected = 0;    ///< the same after the correction
+};
+
+/// New P2 space on `mesh` (the space every field lives in).
+std::shared_ptr<Space> create_p2_space(std::shared_ptr<Mesh> mesh, int dim);
+
+/// Interpolate all fields onto V, then correct phi by c (1 - phi^2) so that int phi is
+/// the old one: the correction acts only in the interface and keeps phi = -1 outside.
+FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, TransferReport& report);
+
+/// int phi dx of a P2 field.
+double integral_of(std::shared_ptr<const Function> f);
+} // namespace cellphase

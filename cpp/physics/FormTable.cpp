@@ -1,0 +1,89 @@
+#include "physics/FormTable.h"
+#include "allen_cahn_2d.h"
+#include "allen_cahn_3d.h"
+#include "cahn_hilliard_2d.h"
+#include "cahn_hilliard_3d.h"
+#include "helfrich_hm1_2d.h"
+#include "helfrich_hm1_3d.h"
+#include "helfrich_l2_2d.h"
+#include "helfrich_l2_3d.h"
+#include "observables_2d.h"
+#include "observables_3d.h"
+
+namespace cellphase
+{
+// FFCx names every symbol form_<file>_<variable>; these macros pick the 2D or 3D file.
+#define CELLPHASE_SYSTEM(F, D)                                                                  \
+  f.a = form_##F##_##D##_a;                                                                     \
+  f.L = form_##F##_##D##_L;                                                                     \
+  f.a_stab = form_##F##_##D##_a_stab;                                                           \
+  f.L_stab = form_##F##_##D##_L_stab;                                                           \
+  f.space = functionspace_form_##F##_##D##_a;
+
+#define CELLPHASE_MU_PROJECTION(F, D)                                                           \
+  f.a_mu = form_##F##_##D##_a_mu;                                                               \
+  f.L_mu = form_##F##_##D##_L_mu;
+
+#define CELLPHASE_MODEL_TABLE(D)                                                                \
+  switch (model)                                                                                \
+  {                                                                                             \
+  case scene::Model::allen_cahn:                                                                \
+  case scene::Model::allen_cahn_volume:                                                         \
+    CELLPHASE_SYSTEM(allen_cahn, D)                                                             \
+    f.dW_integral = form_allen_cahn_##D##_dW_integral;                                          \
+    break;                                                                                      \
+  case scene::Model::cahn_hilliard:                                                             \
+    CELLPHASE_SYSTEM(cahn_hilliard, D)                                                          \
+    break;                                                                                      \
+  case scene::Model::helfrich_lagrange:                                                         \
+  case scene::Model::helfrich_penalty:                                                          \
+    CELLPHASE_SYSTEM(helfrich_l2, D)                                                            \
+    CELLPHASE_MU_PROJECTION(helfrich_l2, D)                                                     \
+    f.int_kappa = form_helfrich_l2_##D##_int_kappa;                                             \
+    f.int_kappa2 = form_helfrich_l2_##D##_int_kappa2;                                           \
+    f.rhs_volume = form_helfrich_l2_##D##_rhs_volume;                                           \
+    f.rhs_area = form_helfrich_l2_##D##_rhs_area;                                               \
+    break;                                                                                      \
+  case scene::Model::helfrich_hm1:                                                              \
+    CELLPHASE_SYSTEM(helfrich_hm1, D)                                                           \
+    CELLPHASE_MU_PROJECTION(helfrich_hm1, D)                                                    \
+    break;                                                                                      \
+  }
+
+ModelForms model_forms(scene::Model model, int dim)
+{
+  ModelForms f;
+  if (dim == 2)
+  {
+    CELLPHASE_MODEL_TABLE(2d)
+  }
+  else
+  {
+    CELLPHASE_MODEL_TABLE(3d)
+  }
+  return f;
+}
+
+ObservableForms observable_forms(int dim)
+{
+  ObservableForms f;
+#define CELLPHASE_OBSERVABLES(D)                                                                \
+  f.phi_integral = form_observables_##D##_phi_integral;                                         \
+  f.cell_volume = form_observables_##D##_cell_volume;                                           \
+  f.energy_ch = form_observables_##D##_energy_ch;                                               \
+  f.helfrich_mu = form_observables_##D##_helfrich_mu;                                           \
+  f.com[0] = form_observables_##D##_com_0;                                                      \
+  f.com[1] = form_observables_##D##_com_1;                                                      \
+  f.p2_space = functionspace_form_observables_##D##_phi_integral;
+  if (dim == 2)
+  {
+    CELLPHASE_OBSERVABLES(2d)
+  }
+  else
+  {
+    CELLPHASE_OBSERVABLES(3d)
+    f.com[2] = form_observables_3d_com_2;
+  }
+  return f;
+}
+} // namespace cellphase

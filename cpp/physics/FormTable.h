@@ -1,0 +1,41 @@
+// The FFCx-generated kernels of each model, for 2D (triangles) or 3D (tetrahedra).
+#pragma once
+#include "compat/Dolfinx.h"
+#include "scene/Scene.h"
+
+namespace cellphase
+{
+/// Forms of one phase-field model (see the matching file in forms/). Null where a model
+/// has no such form.
+struct ModelForms
+{
+  ufcx_form* a = nullptr;        ///< Taylor-linearised matrix (changes every step)
+  ufcx_form* L = nullptr;
+  ufcx_form* a_stab = nullptr;   ///< stabilised matrix (constant between remeshes)
+  ufcx_form* L_stab = nullptr;
+  ufcx_space_fn space = nullptr; ///< mixed space of `a` (argument "v_0")
+  // Initial mu as the L2 projection of (3.23) (Helfrich models)
+  ufcx_form* a_mu = nullptr;
+  ufcx_form* L_mu = nullptr;
+  // Integrals of the explicit multipliers
+  ufcx_form* dW_integral = nullptr;  ///< (2.27), allen_cahn
+  ufcx_form* int_kappa = nullptr;    ///< (3.28)-(3.29), helfrich_l2
+  ufcx_form* int_kappa2 = nullptr;
+  ufcx_form* rhs_volume = nullptr;
+  ufcx_form* rhs_area = nullptr;
+};
+
+/// Functionals of forms/observables.py on the standalone P2 fields phi and mu.
+struct ObservableForms
+{
+  ufcx_form* phi_integral = nullptr;
+  ufcx_form* cell_volume = nullptr;
+  ufcx_form* energy_ch = nullptr;
+  ufcx_form* helfrich_mu = nullptr;
+  std::array<ufcx_form*, 3> com{nullptr, nullptr, nullptr};
+  ufcx_space_fn p2_space = nullptr; ///< scalar P2 (coefficient "phi")
+};
+
+ModelForms model_forms(scene::Model model, int dim);
+ObservableForms observable_forms(int dim);
+} // namespace cellphase

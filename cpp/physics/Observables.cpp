@@ -1,0 +1,64 @@
+#include "physics/Observables.h"
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace cellphase
+{
+Observables::Observables(const scene::Scene& scene, const PhaseFieldModule& module)
+    : scene_(scene), module_(module)
+{
+  const int dim = scene.domain.dim;
+  auto f = observable_forms(dim);
+  const auto& fields = module.fields();
+  auto mesh = module.space()->mesh();
+  CoefficientMap coeffs{{"phi", fields.at("phi")}};
+  if (scene::is_helfrich(scene.phase_field.model))
+    coeffs["mu"] = fields.at("mu");
+  ConstantMap constants{{"eps", std::make_shared<Constant>(scene.numerics.epsilon)},
+                        {"H0", std::make_shared<Constant>(scene.phase_field.spontaneous_curvature)}};
+  auto make = [&](ufcx_form* form) { return compat::create_form(*form, {}, coeffs, constants, mesh); };
+  phi_integral_ = make(f.phi_integral);
+  volume_ = make(f.cell_volume);
+  energy_ch_ = make(f.energy_ch);
+  if (coeffs.count("mu"))
+    helfrich_ = make(f.helfrich_mu);
+  for (int i = 0; i < dim; ++i)
+    com_.push_back(make(f.com[i]));
+}
+
+ObservableValues Observables::evaluate() const
+{
+  ObservableValues v;
+  v.phi_integral = compat::assemble_scalar(*phi_integral_);
+  v.volume = compat::assemble_scalar(*volume_);
+  v.energy_ch = compat::assemble_scalar(*energy_ch_);
+  v.surface = 3 / (2 * std::sqrt(2.0)) * v.energy_ch;
+  if (helfrich_)
+    v.helfrich = compat::assemble_scalar(*helfrich_) / scene_.numbers.Be;
+  v.total_energy = module_.total_energy(v.phi_integral, v.energy_ch, v.helfrich);
+  for (std::size_t i = 0; i < com_.size(); ++i)
+    v.center[i] = compat::assemble_scalar(*com_[i]) / v.volume;
+  const double pi = std::numbers::pi;
+  if (scene_.domain.dim == 2)
+    v.circularity = 2 * std::sqrt(pi * v.volume) / v.surface; // (5.20)
+  else
+    v.circularity = std::cbrt(pi) * std::pow(6 * v.volume, 2.0 / 3.0) / v.surface;
+
+  auto phi = module_.fields().at("phi")->x()->array();
+  double lo = 1e300, hi = -1e300;
+  int not_finite = 0;
+  for (double p : phi)
+  {
+    lo = std::min(lo, p), hi = std::max(hi, p);
+    not_finite += !std::isfinite(p);
+  }
+  MPI_Comm comm = module_.space()->mesh()->comm();
+  MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &not_finite, 1, MPI_INT, MPI_SUM, comm);
+  v.phi_min = not_finite ? std::nan("") : lo;
+  v.phi_max = not_finite ? std::nan("") : hi;
+  return v;
+}
+} // namespace cellphase

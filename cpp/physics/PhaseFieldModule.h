@@ -1,0 +1,84 @@
+// One subproblem of the operator split: the phase-field / Helfrich gradient flow of the
+// scene's model (section 2.5 and 3.4.1), solved as one monolithic P2 system per step.
+#pragma once
+#include "compat/Dolfinx.h"
+#include "physics/FormTable.h"
+#include "scene/Scene.h"
+#include "solve/LinearSolver.h"
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cellphase
+{
+/// Standalone P2 fields by name ("phi", "mu", "w"), all on one space.
+using FieldMap = std::map<std::string, std::shared_ptr<Function>>;
+
+/// Wall time of the parts of one step, in seconds.
+struct StepTimings
+{
+  double assemble = 0, factorise = 0, solve = 0;
+};
+
+/// Targets of the constraints, fixed at the start: V0 = int phi (3.10), A0 = E_CH (3.11).
+struct ConstraintTargets
+{
+  double volume = 0, area = 0;
+};
+
+class PhaseFieldModule
+{
+public:
+  PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm);
+
+  /// Build spaces, forms and solver on a (new) mesh. `fields` holds phi and, if known,
+  /// the other fields of the model on the P2 space V; missing ones are computed from phi.
+  void attach(std::shared_ptr<Space> V, FieldMap fields);
+  /// Advance one time step of size dt.
+  StepTimings step(double dt);
+
+  const FieldMap& fields() const { return fields_; }
+  std::shared_ptr<Space> space() const { return V_; }
+  std::int64_t num_dofs() const;
+  void set_targets(const ConstraintTargets& t) { targets_ = t; }
+  const ConstraintTargets& targets() const { return targets_; }
+  /// Explicit multipliers of the last step (lam_v, lam_a), for the log.
+  std::array<double, 2> multipliers() const { return {lam_v_->value[0], lam_a_->value[0]}; }
+  /// Energy whose gradient flow the model is: E_CH, E_H or E_H plus penalties (3.30)/(3.33).
+  double total_energy(double phi_integral, double energy_ch, double helfrich) const;
+  int factorisations() const { return solver_ ? solver_->factorisations() : 0; }
+
+private:
+  void bind_forms();
+  void compute_mu_from_phi();
+  void update_multipliers(double dt);
+  void gather_state();   ///< standalone fields -> mixed vector u0
+  void scatter_state();  ///< mixed solution -> standalone fields
+  double integral(const std::shared_ptr<Form>& f) const;
+
+  const scene::Scene& scene_;
+  MPI_Comm comm_;
+  ModelForms forms_;
+  std::vector<std::string> names_;
+  bool stabilised_;
+
+  std::shared_ptr<Space> V_, W_;
+  FieldMap fields_;
+  std::vector<std::vector<std::int32_t>> to_mixed_; ///< per field: V dof -> W dof
+  std::shared_ptr<Function> u0_;                    ///< state at t^n on W
+  std::shared_ptr<Function> boundary_value_;
+  BCs bcs_;
+  std::shared_ptr<Form> a_, L_;
+  std::shared_ptr<Form> dW_integral_, int_kappa_, int_kappa2_, rhs_volume_, rhs_area_,
+      phi_integral_, energy_ch_;
+  std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
+  std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
+  std::unique_ptr<LinearSolver> solver_;
+  bool matrix_current_ = false; ///< stabilised scheme: matrix assembled and factorised
+  ConstantMap constants_;
+  std::shared_ptr<Constant> dt_, lam_v_, lam_a_;
+  ConstraintTargets targets_;
+  double domain_volume_;
+};
+} // namespace cellphase

@@ -1,0 +1,38 @@
+// A PETSc KSP with its own options prefix. Direct MUMPS LU by default; the scene's
+// numerics.petsc options override. Factorisations are reused until the operator changes.
+#pragma once
+#include "compat/Dolfinx.h"
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace cellphase
+{
+/// A linear solve that did not converge (KSP reason < 0).
+struct SolverError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+class LinearSolver
+{
+public:
+  LinearSolver(MPI_Comm comm, const std::string& prefix,
+               const std::map<std::string, std::string>& options);
+  ~LinearSolver();
+  LinearSolver(const LinearSolver&) = delete;
+  LinearSolver& operator=(const LinearSolver&) = delete;
+
+  /// Use A from now on and factorise it (the values of A changed or A is new).
+  /// Returns the wall time of the set-up (factorisation for LU).
+  double set_operator(Mat A);
+  /// x = A^-1 b with the last factorisation; throws SolverError naming `what` on failure.
+  void solve(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>& x, const std::string& what);
+  int factorisations() const { return factorisations_; }
+
+private:
+  KSP ksp_ = nullptr;
+  std::string prefix_;
+  int factorisations_ = 0;
+};
+} // namespace cellphase
