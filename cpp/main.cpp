@@ -5,6 +5,7 @@
 #include "scene/Check.h"
 #include "scene/SceneLoader.h"
 #include "solve/LinearSolver.h"
+#include <dolfinx/common/log.h>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -157,6 +158,7 @@ int main(int argc, char** argv)
   // Only a run needs MPI and PETSc; DOLFINx objects are destroyed inside run().
   int provided;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  dolfinx::init_logging(argc, argv); // DOLFINx logs warnings only
   PetscInitializeNoArguments();
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr); // errors become messages, not aborts
   const int status = run(scene);
