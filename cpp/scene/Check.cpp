@@ -1,0 +1,191 @@
+#include "scene/Check.h"
+#include "scene/Geometry.h"
+#include "scene/Resolution.h"
+#include "scene/Sections.h"
+#include "scene/Units.h"
+#include "scene/YamlRead.h"
+#include <cmath>
+#include <sstream>
+
+namespace cellphase::scene
+{
+using yaml::fmt;
+using yaml::join;
+
+namespace
+{
+
+std::string point(const std::array<double, 3>& p, int dim) { return point_text(p, dim); }
+
+std::string shape_text(const Cell& c, int dim)
+{
+  std::string s;
+  switch (c.shape)
+  {
+  case ShapeKind::circle:
+    s = std::string(dim == 2 ? "circle" : "sphere") + ", radius " + fmt(c.radius);
+    break;
+  case ShapeKind::ellipse:
+    s = std::string(dim == 2 ? "ellipse" : "ellipsoid") + ", semi-axes " + fmt(c.semi_axes[0])
+        + " x " + fmt(c.semi_axes[1]) + (dim == 3 ? " x " + fmt(c.semi_axes[2]) : "");
+    break;
+  case ShapeKind::cassini:
+    s = "Cassini oval, a " + fmt(c.cassini_a) + ", b " + fmt(c.cassini_b);
+    break;
+  case ShapeKind::expression:
+    s = "expression \"" + c.expression + "\"";
+    break;
+  }
+  s += ", centre " + point(c.center, dim);
+  if (c.rotation != 0)
+    s += ", rotated " + fmt(c.rotation * 180 / M_PI) + " deg";
+  return s;
+}
+
+/// Two significant digits: the estimate is not more precise than that.
+std::string rough(double v)
+{
+  if (v < 100)
+    return std::to_string(std::lround(v));
+  const double scale = std::pow(10.0, std::floor(std::log10(v)) - 1);
+  std::ostringstream s;
+  s.precision(0);
+  s << std::fixed << std::round(v / scale) * scale;
+  return s.str();
+}
+
+class Report
+{
+public:
+  void line(const std::string& label, const std::string& text)
+  {
+    out_ << "  " << label << std::string(label.size() < 22 ? 22 - label.size() : 1, ' ')
+         << text << '\n';
+  }
+  std::ostringstream out_;
+};
+
+} // namespace
+
+long number_of_steps(const Scene& s)
+{
+  // 1e-9 relative slack: end_time = 1, dt = 1e-3 is 1000 steps, not 1001.
+  return static_cast<long>(std::ceil(s.numerics.end_time / s.numerics.dt * (1 - 1e-9)));
+}
+
+long number_of_outputs(const Scene& s)
+{
+  return s.output.every > 0 ? 1 + number_of_steps(s) / s.output.every : 0;
+}
+
+SizeEstimate estimate_size(const Scene& s)
+{
+  const Domain& d = s.domain;
+  SizeEstimate e;
+  e.base_cells = d.dim == 2 ? 2.0 * d.resolution[0] * d.resolution[1]
+                            : 6.0 * d.resolution[0] * d.resolution[1] * d.resolution[2];
+  for (const Cell& c : s.cells)
+    e.interface_measure += interface_measure(d, SignedDistance(c, d.dim));
+  if (required_levels(s) > 0)
+  {
+    // Refined band: |phi| < threshold, plus one coarse cell on each side.
+    const double band = 2 * std::atanh(s.numerics.mesh.refine_threshold) * std::sqrt(2.0)
+                            * s.numerics.epsilon
+                        + 2 * base_cell_size(d);
+    const double h = finest_cell_size(s);
+    const double fine_volume = d.dim == 2 ? h * h / 2 : h * h * h / 6;
+    e.refined_cells = e.interface_measure * band / fine_volume;
+  }
+  const double per_cell = d.dim == 2 ? 2.0 : 1.4; // P2 dofs per simplex, asymptotically
+  e.dofs = per_cell * (e.base_cells + e.refined_cells)
+           * static_cast<double>(model_fields(s.phase_field.model).size());
+  return e;
+}
+
+std::string check_report(const Scene& s)
+{
+  const Domain& d = s.domain;
+  const int dim = d.dim;
+  Report r;
+  r.out_ << "scene " << s.source << " is valid\n";
+
+  std::string domain, cells_per_axis;
+  for (int a = 0; a < dim; ++a)
+  {
+    domain += (a ? " x [" : "[") + fmt(d.lower[a]) + ", " + fmt(d.upper[a]) + "]";
+    cells_per_axis += (a ? " x " : "") + std::to_string(d.resolution[a]);
+  }
+  r.line("dimension", std::to_string(dim) + "D (" + (dim == 2 ? "triangles" : "tetrahedra")
+                          + ")");
+  r.line("domain", domain + ", " + cells_per_axis + " base cells");
+  r.line("boundary", std::string("phi ")
+                         + (s.phi_boundary == PhiBoundary::dirichlet ? "dirichlet (phi = -1)"
+                                                                     : "neumann"));
+  r.line("cells", std::to_string(s.cells.size()));
+  for (std::size_t i = 0; i < s.cells.size(); ++i)
+    r.line("  " + s.cells[i].name, shape_text(s.cells[i], dim));
+
+  const PhaseField& pf = s.phase_field;
+  r.line("model", std::string(to_string(pf.model)) + " (fields "
+                      + join(model_fields(pf.model)) + "), linearisation "
+                      + to_string(s.numerics.linearisation)
+                      + (s.numerics.linearisation == Linearisation::stabilised
+                             ? " (S = " + fmt(s.numerics.stabilisation) + ")"
+                             : ""));
+  r.line("phase field", "mobility " + fmt(pf.mobility) + ", H0 " + fmt(pf.spontaneous_curvature)
+                            + ", penalties p1 " + fmt(pf.penalty_volume) + " p2 "
+                            + fmt(pf.penalty_area) + ", constraint relaxation "
+                            + fmt(pf.constraint_relaxation));
+
+  const Numbers& n = s.numbers;
+  const DerivedFlags from_units = derivable_numbers(s.units);
+  auto origin = [&](bool derived) { return derived ? "" : " (default)"; };
+  const bool units = s.units.length || s.units.velocity || s.units.density || s.units.viscosity
+                     || s.units.bending_rigidity || s.units.surface_tension;
+  if (units)
+    r.line("numbers (from units)", "Re = " + fmt(n.Re) + origin(from_units.Re) + ", Ca = "
+                                       + fmt(n.Ca) + origin(from_units.Ca) + ", Be = "
+                                       + fmt(n.Be) + origin(from_units.Be));
+  else
+    r.line("numbers", "Re = " + fmt(n.Re) + ", Ca = " + fmt(n.Ca) + ", Be = " + fmt(n.Be));
+  if (n.time_scale_s)
+    r.line("time scale", "L/V = " + fmt(*n.time_scale_s) + " s; end time "
+                             + fmt(s.numerics.end_time * *n.time_scale_s) + " s");
+
+  const double eps = s.numerics.epsilon;
+  const int levels = required_levels(s);
+  const double h = finest_cell_size(s);
+  r.line("epsilon", fmt(eps));
+  r.line("interface width", fmt(interface_width(eps)) + " (|phi| < 0.9, 4.16 epsilon)");
+  r.line("base cell size", fmt(base_cell_size(d)));
+  r.line("refinement levels", std::to_string(levels) + " (max "
+                                  + std::to_string(s.numerics.mesh.max_levels) + ")");
+  r.line("finest cell size", fmt(h));
+  r.line("points across", fmt(interface_width(eps) / h) + " mesh points across the interface "
+                              "(requested " + fmt(s.numerics.mesh.points_across_interface)
+                              + ")");
+  r.line("remeshing", s.numerics.mesh.remesh_every > 0
+                          ? "every " + std::to_string(s.numerics.mesh.remesh_every) + " steps"
+                          : std::string("never (mesh built once)"));
+
+  const long steps = number_of_steps(s);
+  r.line("time step", fmt(s.numerics.dt) + ", end time " + fmt(s.numerics.end_time));
+  r.line("steps", std::to_string(steps));
+  r.line("outputs", s.output.every > 0
+                        ? std::to_string(number_of_outputs(s)) + " (initial state, then every "
+                              + std::to_string(s.output.every) + " steps) of "
+                              + join(s.output.fields) + " to " + s.output.directory
+                        : std::string("none (output.every = 0)"));
+
+  const SizeEstimate e = estimate_size(s);
+  r.line(dim == 2 ? "interface length" : "interface area", std::string("~") + fmt(e.interface_measure));
+  r.line("mesh cells", std::string("~") + rough(e.base_cells + e.refined_cells) + " (" + rough(e.base_cells)
+                           + " base + ~" + rough(e.refined_cells) + " in the refined band)");
+  r.line("degrees of freedom",
+         std::string("~") + rough(e.dofs) + " (P2, " + std::to_string(model_fields(pf.model).size())
+             + " field" + (model_fields(pf.model).size() > 1 ? "s" : "") + ")");
+  r.out_ << "  (mesh cells and degrees of freedom are rough estimates from the interface size)\n";
+  return r.out_.str();
+}
+
+} // namespace cellphase::scene

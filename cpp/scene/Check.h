@@ -1,0 +1,25 @@
+// `cellphase check SCENE`: what a scene implies (mesh, steps, problem size) before running.
+#pragma once
+#include "scene/Scene.h"
+#include <string>
+
+namespace cellphase::scene
+{
+/// Problem size implied by a scene; the cell count is an estimate from the interface size.
+struct SizeEstimate
+{
+  double interface_measure = 0; ///< total interface length (2D) or area (3D)
+  double base_cells = 0;        ///< triangles / tetrahedra of the base mesh
+  double refined_cells = 0;     ///< cells added by refining the band around the interfaces
+  double dofs = 0;              ///< P2 degrees of freedom of all fields of the model
+};
+SizeEstimate estimate_size(const Scene& s);
+
+/// Number of time steps, ceil(end_time / dt) (with a little tolerance for rounding).
+long number_of_steps(const Scene& s);
+/// Field writes: the initial state plus one every output.every steps (0 if every == 0).
+long number_of_outputs(const Scene& s);
+
+/// Multi-line human-readable summary of a validated scene.
+std::string check_report(const Scene& s);
+} // namespace cellphase::scene

@@ -1,0 +1,158 @@
+// Cross-section checks: every cell (plus a margin) inside the domain, cells disjoint,
+// and the requested interface resolution reachable within max_levels.
+#include "scene/Geometry.h"
+#include "scene/Resolution.h"
+#include "scene/Sections.h"
+#include <algorithm>
+#include <cmath>
+
+namespace cellphase::scene
+{
+using namespace yaml;
+
+namespace
+{
+
+std::string domain_text(const Domain& d)
+{
+  std::string s;
+  for (int a = 0; a < d.dim; ++a)
+    s += (a ? " x [" : "[") + fmt(d.lower[a]) + ", " + fmt(d.upper[a]) + "]";
+  return s;
+}
+
+/// Calls f(p) on the boundary of the box [lo, hi] with spacing about h (at least `min_n`
+/// points per edge).
+template <typename F>
+void for_each_box_boundary_point(int dim, const Point& lo, const Point& hi, double h,
+                                 int min_n, int max_n, F&& f)
+{
+  for (int a = 0; a < dim; ++a)
+    for (double fixed : {lo[a], hi[a]})
+    {
+      // The other axes of this face (one in 2D, two in 3D).
+      const int b = (a + 1) % dim, c = (a + 2) % dim;
+      auto count = [&](int axis)
+      { return std::clamp(int(std::ceil((hi[axis] - lo[axis]) / h)) + 1, min_n, max_n); };
+      const int nb = count(b), nc = dim == 3 ? count(c) : 1;
+      for (int j = 0; j < nc; ++j)
+        for (int i = 0; i < nb; ++i)
+        {
+          Point p{0, 0, 0};
+          p[a] = fixed;
+          p[b] = lo[b] + (hi[b] - lo[b]) * i / (nb - 1);
+          if (dim == 3)
+            p[c] = nc > 1 ? lo[c] + (hi[c] - lo[c]) * j / (nc - 1) : lo[c];
+          f(p);
+        }
+    }
+}
+
+} // namespace
+
+void check_geometry(const Section& top, const Scene& s)
+{
+  const Domain& d = s.domain;
+  const int dim = d.dim;
+  const double margin = 3 * s.numerics.epsilon;
+  const std::vector<Section> cell_sections = top.list_of_sections("cells");
+  auto cell_fail = [&](std::size_t i, const std::string& problem)
+  { cell_sections[i].relabel(cell_label(i, s.cells[i])).fail(problem); };
+  auto outside = [&](std::size_t i, const Point& p)
+  {
+    cell_fail(i, "extends outside the domain: its interior reaches " + point_text(p, dim)
+                     + ", closer than 3 epsilon = " + fmt(margin)
+                     + " to the domain boundary; the cell and a margin of 3 epsilon around "
+                       "it must lie inside the domain "
+                     + domain_text(d));
+  };
+
+  std::vector<SignedDistance> r;
+  for (const Cell& c : s.cells)
+    r.emplace_back(c, dim);
+
+  // Interior points must keep the margin to the boundary.
+  Point lo{0, 0, 0}, hi{0, 0, 0};
+  bool room = true;
+  for (int a = 0; a < dim; ++a)
+  {
+    lo[a] = d.lower[a] + margin;
+    hi[a] = d.upper[a] - margin;
+    room = room && lo[a] < hi[a];
+  }
+  auto in_inner_box = [&](const Point& p)
+  {
+    for (int a = 0; a < dim; ++a)
+      if (p[a] < lo[a] || p[a] > hi[a])
+        return false;
+    return true;
+  };
+
+  // Grid pass: finite values, margin, overlaps, and that each cell is seen at all.
+  std::vector<long> inside(s.cells.size(), 0);
+  for_each_grid_point(d, check_grid_points(dim),
+                      [&](const Point& p)
+                      {
+                        std::size_t first_inside = s.cells.size();
+                        for (std::size_t i = 0; i < r.size(); ++i)
+                        {
+                          const double v = r[i](p[0], p[1], p[2]);
+                          if (!std::isfinite(v))
+                            cell_fail(i, "the signed distance is " + fmt(v) + " at "
+                                             + point_text(p, dim)
+                                             + "; it must be finite everywhere in the domain");
+                          if (v >= 0)
+                            continue;
+                          ++inside[i];
+                          if (!in_inner_box(p))
+                            outside(i, p);
+                          if (first_inside < s.cells.size())
+                            cell_fail(i, "overlaps " + cell_label(first_inside, s.cells[first_inside])
+                                             + ", e.g. at " + point_text(p, dim)
+                                             + "; cells must not overlap");
+                          first_inside = i;
+                        }
+                      });
+
+  // Dense pass along the margin: catches cells that cross it between grid points.
+  if (room)
+  {
+    const double h = s.numerics.epsilon / (dim == 2 ? 4 : 1);
+    for (std::size_t i = 0; i < r.size(); ++i)
+      for_each_box_boundary_point(dim, lo, hi, h, dim == 2 ? 401 : 61, dim == 2 ? 20001 : 301,
+                                  [&](const Point& p)
+                                  {
+                                    if (r[i](p[0], p[1], p[2]) <= 0)
+                                      outside(i, p);
+                                  });
+  }
+
+  for (std::size_t i = 0; i < r.size(); ++i)
+    if (inside[i] == 0)
+      cell_fail(i, "no point of the domain " + domain_text(d)
+                       + " lies inside this cell: it is outside the domain or too small "
+                         "(smaller than the sampling grid of "
+                       + std::to_string(check_grid_points(dim)) + " points per axis)");
+
+  const int levels = required_levels(s);
+  const int max_levels = s.numerics.mesh.max_levels;
+  if (levels > max_levels)
+  {
+    std::string finer;
+    for (int a = 0; a < dim; ++a)
+      finer += (a ? ", " : "[")
+               + std::to_string(std::lround(std::ldexp(d.resolution[a], levels - max_levels)));
+    top.section("numerics").section("mesh").fail(
+        "max_levels",
+        "the interface (width " + fmt(interface_width(s.numerics.epsilon))
+            + " = 4.16 epsilon) needs " + std::to_string(levels)
+            + " refinement levels of the base cells (size " + fmt(base_cell_size(d)) + ") for "
+            + fmt(s.numerics.mesh.points_across_interface)
+            + " mesh points across it, but max_levels is " + std::to_string(max_levels)
+            + "; set numerics.mesh.max_levels to " + std::to_string(levels)
+            + ", or domain.resolution to " + finer
+            + "], or lower numerics.mesh.points_across_interface, or raise numerics.epsilon");
+  }
+}
+
+} // namespace cellphase::scene

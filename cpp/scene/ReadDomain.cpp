@@ -1,0 +1,70 @@
+#include "scene/Sections.h"
+
+namespace cellphase::scene
+{
+using namespace yaml;
+
+void read_domain(const Section& top, Scene& s)
+{
+  if (!top.has("domain"))
+    top.fail("domain", "missing; every scene needs a domain with lower, upper and resolution");
+  const Section d = top.section("domain");
+  d.allow_only({"lower", "upper", "resolution"});
+
+  // The first list given fixes the dimension; the others must have the same length.
+  std::string first;
+  for (const char* key : {"lower", "upper", "resolution"})
+    if (first.empty() && d.has(key))
+      first = key;
+  int dim = 2;
+  if (!first.empty())
+  {
+    const Value v = d.value(first);
+    if (!v.node.IsSequence() || (v.node.size() != 2 && v.node.size() != 3))
+      v.fail("found " + v.found() + ", expected a list of 2 numbers (2D) or 3 numbers (3D)");
+    dim = static_cast<int>(v.node.size());
+  }
+  s.domain.dim = dim;
+  for (const char* key : {"lower", "upper", "resolution"})
+    if (d.has(key) && key != first)
+    {
+      const Value v = d.value(key);
+      if (!v.node.IsSequence() || v.node.size() != std::size_t(dim))
+        v.fail("found " + v.found() + ", expected a list of " + std::to_string(dim)
+               + " values, one per axis (domain." + first + " has " + std::to_string(dim)
+               + ", so the domain is " + std::to_string(dim) + "D)");
+    }
+
+  s.domain.lower = {0, 0, 0};
+  s.domain.upper = {1, 1, dim == 3 ? 1.0 : 0.0};
+  s.domain.resolution = {16, 16, dim == 3 ? 16 : 0};
+  const std::vector<std::size_t> n{std::size_t(dim)};
+  if (d.has("lower"))
+  {
+    const auto v = d.numbers("lower", n, any());
+    std::copy(v.begin(), v.end(), s.domain.lower.begin());
+  }
+  if (d.has("upper"))
+  {
+    const auto v = d.numbers("upper", n, any());
+    std::copy(v.begin(), v.end(), s.domain.upper.begin());
+  }
+  if (d.has("resolution"))
+  {
+    const auto v = d.integers("resolution", dim, closed(1, 1e6));
+    std::copy(v.begin(), v.end(), s.domain.resolution.begin());
+  }
+  for (int i = 0; i < dim; ++i)
+    if (!(s.domain.upper[i] > s.domain.lower[i]))
+      d.fail("upper", "on axis " + std::to_string(i) + " upper (" + fmt(s.domain.upper[i])
+                          + ") is not greater than lower (" + fmt(s.domain.lower[i])
+                          + "); upper must exceed lower on every axis");
+
+  const Section b = top.section("boundary");
+  b.allow_only({"phi"});
+  s.phi_boundary = b.choice<PhiBoundary>(
+      "phi", PhiBoundary::dirichlet,
+      {{"dirichlet", PhiBoundary::dirichlet}, {"neumann", PhiBoundary::neumann}});
+}
+
+} // namespace cellphase::scene

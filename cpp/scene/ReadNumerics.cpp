@@ -1,0 +1,60 @@
+#include "scene/Sections.h"
+
+namespace cellphase::scene
+{
+using namespace yaml;
+
+namespace
+{
+void read_mesh(const Section& m, Mesh& mesh)
+{
+  m.allow_only({"remesh_every", "points_across_interface", "refine_threshold", "max_levels"});
+  mesh.remesh_every = m.integer("remesh_every", mesh.remesh_every, non_negative());
+  mesh.points_across_interface =
+      m.number("points_across_interface", mesh.points_across_interface, positive());
+  mesh.refine_threshold = m.number("refine_threshold", mesh.refine_threshold, open(0, 1));
+  mesh.max_levels = m.integer("max_levels", mesh.max_levels, closed(0, 20));
+}
+
+/// PETSc options pass through as text; only their shape is checked here.
+void read_petsc(const Section& p, std::map<std::string, std::string>& out)
+{
+  p.allow_only(p.keys()); // any names, but no duplicates or non-scalar keys
+  for (const std::string& key : p.keys())
+  {
+    const Value v = p.value(key);
+    if (key.empty() || key[0] == '-')
+      v.fail("write PETSc option names without the leading '-' (e.g. ksp_type)");
+    if (v.node.IsNull())
+      out[key] = ""; // a flag option such as ksp_monitor
+    else if (v.node.IsScalar())
+      out[key] = v.node.Scalar();
+    else
+      v.fail("found " + v.found() + ", expected a single value (text, number or boolean)");
+  }
+}
+} // namespace
+
+void read_numerics(const Section& top, Scene& s)
+{
+  if (!top.has("numerics"))
+    top.fail("numerics", "missing; every scene needs numerics.epsilon, numerics.dt and "
+                         "numerics.end_time");
+  const Section n = top.section("numerics");
+  n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "petsc"});
+  Numerics& num = s.numerics;
+  num.epsilon = n.number("epsilon", positive());
+  num.dt = n.number("dt", positive());
+  num.end_time = n.number("end_time", positive());
+  if (num.end_time < num.dt)
+    n.fail("end_time", "found " + fmt(num.end_time) + ", expected a number >= numerics.dt ("
+                           + fmt(num.dt) + "), so that at least one step is taken");
+  num.linearisation = n.choice<Linearisation>(
+      "linearisation", num.linearisation,
+      {{"taylor", Linearisation::taylor}, {"stabilised", Linearisation::stabilised}});
+  num.stabilisation = n.number("stabilisation", num.stabilisation, non_negative());
+  read_mesh(n.section("mesh"), num.mesh);
+  read_petsc(n.section("petsc"), num.petsc);
+}
+
+} // namespace cellphase::scene

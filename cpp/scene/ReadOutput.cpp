@@ -1,0 +1,35 @@
+#include "scene/Sections.h"
+#include <algorithm>
+
+namespace cellphase::scene
+{
+using namespace yaml;
+
+void read_output(const Section& top, Scene& s)
+{
+  const Section o = top.section("output");
+  o.allow_only({"directory", "every", "fields", "progress"});
+  Output& out = s.output;
+  out.directory = o.string("directory", out.directory);
+  if (out.directory.empty())
+    o.fail("directory", "is empty; give a directory name such as output");
+  out.every = o.integer("every", out.every, non_negative());
+  out.progress = o.boolean("progress", out.progress);
+  if (!o.has("fields"))
+    return;
+
+  const std::vector<std::string> allowed = model_fields(s.phase_field.model);
+  out.fields = o.strings("fields");
+  const Value v = o.value("fields");
+  for (std::size_t i = 0; i < out.fields.size(); ++i)
+  {
+    const std::string& f = out.fields[i];
+    if (std::find(allowed.begin(), allowed.end(), f) == allowed.end())
+      v.element(i).fail("field \"" + f + "\" is not solved for by model "
+                        + to_string(s.phase_field.model) + "; allowed: " + join(allowed));
+    if (std::find(out.fields.begin(), out.fields.begin() + i, f) != out.fields.begin() + i)
+      v.element(i).fail("field \"" + f + "\" is listed twice");
+  }
+}
+
+} // namespace cellphase::scene

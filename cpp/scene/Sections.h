@@ -1,0 +1,20 @@
+// Readers for the top-level sections of a scene file; each validates its keys and fills
+// its part of the Scene. Called in the order of SceneLoader.cpp (later sections may use
+// earlier ones, e.g. cells need the dimension).
+#pragma once
+#include "scene/Scene.h"
+#include "scene/YamlRead.h"
+
+namespace cellphase::scene
+{
+void read_domain(const yaml::Section& top, Scene& s);       ///< domain, boundary
+void read_phase_field(const yaml::Section& top, Scene& s);  ///< phase_field
+void read_numbers(const yaml::Section& top, Scene& s);      ///< numbers or units
+void read_numerics(const yaml::Section& top, Scene& s);     ///< numerics
+void read_cells(const yaml::Section& top, Scene& s);        ///< cells (shapes only)
+void read_output(const yaml::Section& top, Scene& s);       ///< output
+/// How messages and reports name a cell: cells[1], or cells[1] ("rbc") if it has a name.
+std::string cell_label(std::size_t i, const Cell& c);
+/// Checks across sections: cells inside the domain and disjoint, mesh resolution reachable.
+void check_geometry(const yaml::Section& top, const Scene& s);
+} // namespace cellphase::scene
