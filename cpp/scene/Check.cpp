@@ -47,6 +47,13 @@ std::string rough(double v)
 {
   if (v < 100)
     return std::to_string(std::lround(v));
+  if (v >= 1e6)
+  {
+    std::ostringstream s;
+    s.precision(2);
+    s << v; // 1.8e+08
+    return s.str();
+  }
   const double scale = std::pow(10.0, std::floor(std::log10(v)) - 1);
   std::ostringstream s;
   s.precision(0);

@@ -94,7 +94,7 @@ std::map<std::string, std::string> apply_overrides(YAML::Node& root,
         std::size_t i = 0;
         if (!is_index(part, i) || i >= cur.size())
           bad(walked + " is a list of " + std::to_string(cur.size())
-              + " entries; address one by its index 0 to " + std::to_string(cur.size() - 1)
+              + (cur.size() == 1 ? " entry" : " entries") + "; address one by its index 0 to " + std::to_string(cur.size() - 1)
               + " (" + walked + ".0...)");
         if (last)
           cur[i] = value;

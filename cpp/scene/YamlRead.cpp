@@ -81,6 +81,8 @@ std::string join(const std::vector<std::string>& items, const std::string& sep)
 
 std::string fmt(double v)
 {
+  if (std::isnan(v))
+    return "nan"; // not "-nan"
   std::ostringstream s;
   s.precision(6);
   s << v;
