@@ -185,7 +185,10 @@ std::string check_report(const Scene& s)
                         : std::string("none (output.every = 0)"));
 
   const SizeEstimate e = estimate_size(s);
-  r.line(dim == 2 ? "interface length" : "interface area", std::string("~") + fmt(e.interface_measure));
+  std::ostringstream measure;
+  measure.precision(3);
+  measure << e.interface_measure;
+  r.line(dim == 2 ? "interface length" : "interface area", std::string("~") + measure.str());
   r.line("mesh cells", std::string("~") + rough(e.base_cells + e.refined_cells) + " (" + rough(e.base_cells)
                            + " base + ~" + rough(e.refined_cells) + " in the refined band)");
   r.line("degrees of freedom",

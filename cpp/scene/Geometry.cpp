@@ -10,18 +10,21 @@ int check_grid_points(int dim) { return dim == 2 ? 201 : 61; }
 
 double interface_measure(const Domain& d, const SignedDistance& r)
 {
+  // Coarea formula with a hat-shaped delta of half-width 2h: its samples along the normal
+  // sum to one, so straight pieces of interface are measured exactly on any grid offset.
   const int n = d.dim == 2 ? 801 : 121;
-  double cell_volume = 1, delta = 0;
+  double cell_volume = 1, h = 0;
   for (int a = 0; a < d.dim; ++a)
   {
-    const double h = (d.upper[a] - d.lower[a]) / (n - 1);
-    cell_volume *= h;
-    delta = std::max(delta, h);
+    const double ha = (d.upper[a] - d.lower[a]) / (n - 1);
+    cell_volume *= ha;
+    h = std::max(h, ha);
   }
-  long count = 0;
+  const double delta = 2 * h;
+  double sum = 0;
   for_each_grid_point(d, n, [&](const Point& p)
-                      { count += std::abs(r(p[0], p[1], p[2])) < delta; });
-  return count * cell_volume / (2 * delta);
+                      { sum += std::max(0.0, 1 - std::abs(r(p[0], p[1], p[2])) / delta); });
+  return sum * cell_volume / delta;
 }
 
 std::string point_text(const Point& p, int dim)

@@ -29,7 +29,7 @@ void for_each_grid_point(const Domain& d, int n, F&& f)
 int check_grid_points(int dim);
 
 /// Length (2D) or area (3D) of a cell's zero level set inside the domain, estimated from
-/// the volume of the band |r| < delta divided by 2 delta. An estimate, not a measurement.
+/// samples of r near zero (coarea formula). An estimate, not a measurement.
 double interface_measure(const Domain& d, const SignedDistance& r);
 
 /// "(0.5, -1)" or "(0.5, -1, 2)".

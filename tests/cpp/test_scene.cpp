@@ -531,7 +531,7 @@ TEST(SceneCheck, SizeEstimate)
   // One circle of radius 1: length 2 pi.
   const Scene s = parse_scene(minimal_scene, "min.yaml");
   const SizeEstimate e = estimate_size(s);
-  EXPECT_NEAR(e.interface_measure, 2 * M_PI, 0.05 * 2 * M_PI);
+  EXPECT_NEAR(e.interface_measure, 2 * M_PI, 0.01 * 2 * M_PI);
   EXPECT_DOUBLE_EQ(e.base_cells, 2 * 16 * 16);
   // Band 2 atanh(0.95) sqrt2 eps + 2 h_base, finest triangles h^2/2 with h = 0.25/8.
   const double band = 2 * std::atanh(0.95) * std::sqrt(2.0) * 0.05 + 0.5;
@@ -548,7 +548,7 @@ numerics: {epsilon: 0.06, dt: 0.01, end_time: 0.1}
 )",
                               "ball.yaml");
   const SizeEstimate eb = estimate_size(b);
-  EXPECT_NEAR(eb.interface_measure, M_PI, 0.1 * M_PI);
+  EXPECT_NEAR(eb.interface_measure, M_PI, 0.03 * M_PI);
   EXPECT_DOUBLE_EQ(eb.base_cells, 6 * 8 * 8 * 8);
 }
 
