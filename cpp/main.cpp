@@ -34,7 +34,8 @@ A run writes into output.directory:
   fields.xdmf/.h5   the fields every output.every steps (open in ParaView)
 Run in parallel with: mpirun -n 2 cellphase run SCENE
 
-Exit status: 0 success, 2 invalid scene or arguments, 3 numerical failure.
+Exit status: 0 success, 2 invalid scene or arguments, 3 numerical failure, 4 other errors
+(for example an output directory that cannot be written).
 )";
 
 struct Arguments
@@ -113,6 +114,11 @@ int run(const cellphase::scene::Scene& scene)
     if (rank == 0)
       std::fprintf(stderr, "error: numerical failure: %s\n", e.what());
     status = 3;
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    status = 4;
   }
   return status;
 }

@@ -13,7 +13,7 @@ struct ModelForms
   ufcx_form* L = nullptr;
   ufcx_form* a_stab = nullptr;   ///< stabilised matrix (constant between remeshes)
   ufcx_form* L_stab = nullptr;
-  ufcx_space_fn space = nullptr; ///< mixed space of `a` (argument "v_0")
+  ufcx_space_fn space = nullptr; ///< space of the state coefficient "u0" of `a`
   // Initial mu as the L2 projection of (3.23) (Helfrich models)
   ufcx_form* a_mu = nullptr;
   ufcx_form* L_mu = nullptr;

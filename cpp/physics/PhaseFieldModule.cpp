@@ -71,7 +71,7 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
 {
   V_ = V;
   auto mesh = V->mesh();
-  W_ = compat::create_space(forms_.space, "v_0", mesh);
+  W_ = compat::create_space(forms_.space, "u0", mesh);
   fields_.clear();
   for (const auto& name : names_)
   {
@@ -103,7 +103,9 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   if (scene_.phi_boundary == scene::PhiBoundary::dirichlet)
   {
     // phi = -1 on the boundary (2.19); the other fields have natural conditions.
-    boundary_value_ = std::make_shared<Function>(V_);
+    // The value lives in the collapsed space V for a mixed W, in W itself otherwise
+    // (their dof numberings differ).
+    boundary_value_ = std::make_shared<Function>(names_.size() > 1 ? V_ : W_);
     boundary_value_->x()->set(-1.0);
     if (names_.size() > 1)
       bcs_.push_back(std::make_shared<DirichletBC>(
