@@ -3,8 +3,8 @@
 #   d_t phi = -gamma/Be ( Lap mu - W0''(phi) mu / eps^2 + lam_v + lam_a kappa^n ),   (3.27)
 #   mu      = eps Lap phi - W0'(phi)/eps,                                          (3.23)
 # boundary conditions phi = -1 (or natural), grad mu . n = 0 (section 3.4.1).
-# lam_v, lam_a are explicit: the 2x2 system (3.28)-(3.29) for the multipliers, or
-# p1 (V - V0), p2 (A - A0) for the penalties; both are computed in C++ from phi^n, mu^n.
+# lam_v, lam_a are the multipliers (computed implicitly in C++ from the unit loads below)
+# or the explicit penalties p1 (V - V0), p2 (A - A0) (3.32) of phi^n.
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
@@ -39,12 +39,12 @@ a_stab = common + (- g / eps**2 * S * mu * psi + S / eps * phi * nu) * dx
 L_stab = rhs_common + (g / eps**2 * (ddW0(phi0, eps, H0) - S) * mu0 * psi
                        - (dW0(phi0, eps, H0) - S * phi0) / eps * nu) * dxq
 
-# Integrals of the multiplier system (3.28)-(3.29), with Lap mu integrated by parts
-# (grad mu . n = 0, kappa ~ 0 on the boundary):
-int_kappa = kappa0 * dxq
-int_kappa2 = kappa0**2 * dxq
-rhs_volume = ddW0(phi0, eps, H0) * mu0 / eps**2 * dxq
-rhs_area = (inner(grad(kappa0), grad(mu0)) + kappa0 * ddW0(phi0, eps, H0) * mu0 / eps**2) * dxq
+# Unit loads of the multipliers: the solution is linear in (lam_v, lam_a), so
+# phi^{n+1} = phi_0 + lam_v phi_v + lam_a phi_a, and the 2x2 system that makes
+# V(phi^{n+1}) = V0 and the linearised E_CH(phi^{n+1}) = A0 hold gives the multipliers of
+# (3.25)-(3.29) implicitly (the explicit treatment violates the constraints, section 3.4.1).
+load_v = -g * psi * dx
+load_a = -g * kappa0 * psi * dxq
 
 # Initial mu from phi^0: L2 projection of eps Lap phi - W0'(phi)/eps (3.23)
 V = FunctionSpace(domain, P2)
@@ -53,4 +53,4 @@ phi_init = Coefficient(V)
 a_mu = m * q * dx
 L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q) * dxq
 
-forms = [a, L, a_stab, L_stab, int_kappa, int_kappa2, rhs_volume, rhs_area, a_mu, L_mu]
+forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu]

@@ -2,7 +2,7 @@
 # standalone P2 fields phi and mu.
 from ufl import (Coefficient, FunctionSpace, SpatialCoordinate, dx, grad, inner)
 
-from cellphase_ufl import DIM, P2, QDEG, W, constants, domain, dW0
+from cellphase_ufl import DIM, P2, QDEG, W, constants, domain, dW
 
 V = FunctionSpace(domain, P2)
 phi = Coefficient(V)
@@ -19,7 +19,10 @@ helfrich_mu = mu**2 / (2 * eps) * dx                                           #
 com = [phit * x[i] * dx for i in range(DIM)]                                   # (5.19)
 com_0 = com[0]
 com_1 = com[1]
-forms = [phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1]
+# First variation of E_CH at phi in the direction delta: int kappa delta, (3.24)
+delta = Coefficient(V)
+area_variation = (eps * inner(grad(phi), grad(delta)) + dW(phi) * delta / eps) * dxq
+forms = [area_variation, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1]
 if DIM == 3:
     com_2 = com[2]
     forms.append(com_2)

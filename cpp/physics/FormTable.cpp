@@ -39,10 +39,8 @@ namespace cellphase
   case scene::Model::helfrich_penalty:                                                          \
     CELLPHASE_SYSTEM(helfrich_l2, D)                                                            \
     CELLPHASE_MU_PROJECTION(helfrich_l2, D)                                                     \
-    f.int_kappa = form_helfrich_l2_##D##_int_kappa;                                             \
-    f.int_kappa2 = form_helfrich_l2_##D##_int_kappa2;                                           \
-    f.rhs_volume = form_helfrich_l2_##D##_rhs_volume;                                           \
-    f.rhs_area = form_helfrich_l2_##D##_rhs_area;                                               \
+    f.load_v = form_helfrich_l2_##D##_load_v;                                                   \
+    f.load_a = form_helfrich_l2_##D##_load_a;                                                   \
     break;                                                                                      \
   case scene::Model::helfrich_hm1:                                                              \
     CELLPHASE_SYSTEM(helfrich_hm1, D)                                                           \
@@ -72,6 +70,7 @@ ObservableForms observable_forms(int dim)
   f.cell_volume = form_observables_##D##_cell_volume;                                           \
   f.energy_ch = form_observables_##D##_energy_ch;                                               \
   f.helfrich_mu = form_observables_##D##_helfrich_mu;                                           \
+  f.area_variation = form_observables_##D##_area_variation;                                     \
   f.com[0] = form_observables_##D##_com_0;                                                      \
   f.com[1] = form_observables_##D##_com_1;                                                      \
   f.p2_space = functionspace_form_observables_##D##_phi_integral;

@@ -19,10 +19,8 @@ struct ModelForms
   ufcx_form* L_mu = nullptr;
   // Integrals of the explicit multipliers
   ufcx_form* dW_integral = nullptr;  ///< (2.27), allen_cahn
-  ufcx_form* int_kappa = nullptr;    ///< (3.28)-(3.29), helfrich_l2
-  ufcx_form* int_kappa2 = nullptr;
-  ufcx_form* rhs_volume = nullptr;
-  ufcx_form* rhs_area = nullptr;
+  ufcx_form* load_v = nullptr;       ///< unit loads of the multipliers (3.27), helfrich_l2
+  ufcx_form* load_a = nullptr;
 };
 
 /// Functionals of forms/observables.py on the standalone P2 fields phi and mu.
@@ -32,6 +30,7 @@ struct ObservableForms
   ufcx_form* cell_volume = nullptr;
   ufcx_form* energy_ch = nullptr;
   ufcx_form* helfrich_mu = nullptr;
+  ufcx_form* area_variation = nullptr; ///< int kappa(phi) delta (coefficients phi, delta)
   std::array<ufcx_form*, 3> com{nullptr, nullptr, nullptr};
   ufcx_space_fn p2_space = nullptr; ///< scalar P2 (coefficient "phi")
 };

@@ -120,6 +120,11 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   solver_ = std::make_unique<LinearSolver>(comm_, "phasefield_", scene_.numerics.petsc);
   b_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
   x_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+  if (load_v_)
+  {
+    x_v_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+    x_a_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+  }
 
   if (forms_.a_mu && fields.find("mu") == fields.end())
     compute_mu_from_phi();
@@ -136,14 +141,21 @@ void PhaseFieldModule::bind_forms()
   auto functional = [&](ufcx_form* f) -> std::shared_ptr<Form>
   { return f ? compat::create_form(*f, {}, coeffs, constants_, mesh) : nullptr; };
   dW_integral_ = functional(forms_.dW_integral);
-  int_kappa_ = functional(forms_.int_kappa);
-  int_kappa2_ = functional(forms_.int_kappa2);
-  rhs_volume_ = functional(forms_.rhs_volume);
-  rhs_area_ = functional(forms_.rhs_area);
   auto obs = observable_forms(scene_.domain.dim);
   CoefficientMap phi_only{{"phi", fields_.at("phi")}};
   phi_integral_ = compat::create_form(*obs.phi_integral, {}, phi_only, constants_, mesh);
   energy_ch_ = compat::create_form(*obs.energy_ch, {}, phi_only, constants_, mesh);
+  if (forms_.load_v)
+  {
+    load_v_ = compat::create_form(*forms_.load_v, {W_}, coeffs, constants_);
+    load_a_ = compat::create_form(*forms_.load_a, {W_}, coeffs, constants_);
+    delta_ = std::make_shared<Function>(V_);
+    delta_integral_ = compat::create_form(*obs.phi_integral, {}, {{"phi", delta_}}, constants_, mesh);
+    // phi^n is the linearisation point of E_CH: bound to the standalone field, which
+    // holds phi^n until the step is complete.
+    delta_area_variation_ = compat::create_form(
+        *obs.area_variation, {}, {{"phi", fields_.at("phi")}, {"delta", delta_}}, constants_, mesh);
+  }
 }
 
 double PhaseFieldModule::integral(const std::shared_ptr<Form>& f) const
@@ -180,18 +192,6 @@ void PhaseFieldModule::update_multipliers(double dt)
                         - integral(dW_integral_)) / domain_volume_;
     break;
   }
-  case Model::helfrich_lagrange:
-  {
-    // 2x2 system (3.28)-(3.29), each row with the drift relaxation added
-    const double V = integral(phi_integral_), A = integral(energy_ch_);
-    const double k1 = integral(int_kappa_), k2 = integral(int_kappa2_);
-    const double r1 = integral(rhs_volume_) + theta * (V - targets_.volume) / (g * dt);
-    const double r2 = integral(rhs_area_) + theta * (A - targets_.area) / (g * dt);
-    const double det = domain_volume_ * k2 - k1 * k1;
-    lam_v_->value[0] = (r1 * k2 - k1 * r2) / det;
-    lam_a_->value[0] = (domain_volume_ * r2 - k1 * r1) / det;
-    break;
-  }
   case Model::helfrich_penalty:
     lam_v_->value[0] = pf.penalty_volume * (integral(phi_integral_) - targets_.volume); // (3.32)
     lam_a_->value[0] = pf.penalty_area * (integral(energy_ch_) - targets_.area);
@@ -202,6 +202,62 @@ void PhaseFieldModule::update_multipliers(double dt)
   default:
     break;
   }
+}
+
+void PhaseFieldModule::extract_phi(const la::Vector<T>& x, Function& phi) const
+{
+  auto in = x.array();
+  auto out = phi.x()->mutable_array();
+  for (std::size_t d = 0; d < to_mixed_[0].size(); ++d)
+    out[d] = in[to_mixed_[0][d]];
+}
+
+void PhaseFieldModule::apply_implicit_multipliers()
+{
+  // Unit loads are homogeneous at Dirichlet rows (scale 0): phi^{n+1} keeps its BC value.
+  for (auto [form, x] : {std::pair{load_v_, x_v_.get()}, std::pair{load_a_, x_a_.get()}})
+  {
+    b_->set(0.0);
+    fem::assemble_vector(b_->mutable_array(), *form);
+    b_->scatter_rev(std::plus<T>());
+    fem::set_bc<T>(b_->mutable_array(), bcs_, 0.0);
+    solver_->solve(*b_, *x, "the multiplier loads of helfrich_lagrange");
+  }
+  // Volume (3.10) and first-order area (3.11) of phi_0 + lam_v phi_v + lam_a phi_a:
+  //   int phi_0 + lam_v int phi_v + lam_a int phi_a = V0
+  //   A(phi^n) + dA[phi_0 - phi^n] + lam_v dA[phi_v] + lam_a dA[phi_a] = A0
+  auto phi_n = fields_.at("phi");
+  std::array<double, 3> vol, darea;
+  const std::array<const la::Vector<T>*, 3> xs{x_.get(), x_v_.get(), x_a_.get()};
+  for (int k = 0; k < 3; ++k)
+  {
+    extract_phi(*xs[k], *delta_);
+    if (k == 0)
+    {
+      auto d = delta_->x()->mutable_array();
+      auto p = phi_n->x()->array();
+      vol[0] = integral(delta_integral_);
+      for (std::size_t i = 0; i < d.size(); ++i)
+        d[i] -= p[i];
+      darea[0] = integral(delta_area_variation_);
+    }
+    else
+    {
+      vol[k] = integral(delta_integral_);
+      darea[k] = integral(delta_area_variation_);
+    }
+  }
+  const double r1 = targets_.volume - vol[0];
+  const double r2 = targets_.area - integral(energy_ch_) - darea[0];
+  const double det = vol[1] * darea[2] - vol[2] * darea[1];
+  const double lv = (r1 * darea[2] - vol[2] * r2) / det;
+  const double la = (vol[1] * r2 - darea[1] * r1) / det;
+  lam_v_->value[0] = lv;
+  lam_a_->value[0] = la;
+  auto x = x_->mutable_array();
+  auto xv = x_v_->array(), xa = x_a_->array();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] += lv * xv[i] + la * xa[i];
 }
 
 void PhaseFieldModule::gather_state()
@@ -257,6 +313,8 @@ StepTimings PhaseFieldModule::step(double dt)
   }
   auto t1 = std::chrono::steady_clock::now();
   solver_->solve(*b_, *x_, std::string("phase field (") + scene::to_string(scene_.phase_field.model) + ")");
+  if (load_v_)
+    apply_implicit_multipliers();
   scatter_state();
   t.solve = seconds_since(t1);
   return t;

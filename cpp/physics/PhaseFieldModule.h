@@ -53,6 +53,11 @@ private:
   void bind_forms();
   void compute_mu_from_phi();
   void update_multipliers(double dt);
+  /// helfrich_lagrange: solve for the unit loads and combine them with the multipliers
+  /// that make the volume and the (linearised) area of phi^{n+1} equal to the targets.
+  void apply_implicit_multipliers();
+  /// phi part of a mixed vector into a P2 function
+  void extract_phi(const dolfinx::la::Vector<T>& x, Function& phi) const;
   void gather_state();   ///< standalone fields -> mixed vector u0
   void scatter_state();  ///< mixed solution -> standalone fields
   double integral(const std::shared_ptr<Form>& f) const;
@@ -70,8 +75,12 @@ private:
   std::shared_ptr<Function> boundary_value_;
   BCs bcs_;
   std::shared_ptr<Form> a_, L_;
-  std::shared_ptr<Form> dW_integral_, int_kappa_, int_kappa2_, rhs_volume_, rhs_area_,
-      phi_integral_, energy_ch_;
+  std::shared_ptr<Form> dW_integral_, phi_integral_, energy_ch_;
+  // helfrich_lagrange: unit loads, their solutions and functionals of their phi parts
+  std::shared_ptr<Form> load_v_, load_a_;
+  std::unique_ptr<dolfinx::la::Vector<T>> x_v_, x_a_;
+  std::shared_ptr<Function> delta_;
+  std::shared_ptr<Form> delta_integral_, delta_area_variation_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
   std::unique_ptr<LinearSolver> solver_;

@@ -49,6 +49,11 @@ void read_numerics(const Section& top, Scene& s)
   if (num.end_time < num.dt)
     n.fail("end_time", "found " + fmt(num.end_time) + ", expected a number >= numerics.dt ("
                            + fmt(num.dt) + "), so that at least one step is taken");
+  // Step counts are stored as int downstream; far beyond that no run would finish anyway.
+  if (num.end_time / num.dt > 1e9)
+    n.fail("dt", "end_time / dt = " + fmt(num.end_time / num.dt)
+                     + " steps; at most 1e9 steps are allowed, so dt must be >= end_time / 1e9 = "
+                     + fmt(num.end_time / 1e9));
   num.linearisation = n.choice<Linearisation>(
       "linearisation", num.linearisation,
       {{"taylor", Linearisation::taylor}, {"stabilised", Linearisation::stabilised}});
