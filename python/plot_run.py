@@ -1,0 +1,162 @@
+#!/usr/bin/python3
+"""Plot the results of a cellphase run.
+
+Writes PNG files into RUN_DIR/plots (or --out):
+  observables.png  volume, membrane length/area, energies, circularity, centre of
+                   mass and dofs over time (panels whose data are all zero are left out)
+  timings.png      wall time of each step, stacked by part (assembly, solve, ...)
+  level_sets.png   2D runs with fields.xdmf: the zero level set of phi at every
+                   output time, coloured by time (level_sets_NAME.png for other fields)
+"""
+import argparse
+import sys
+from pathlib import Path
+
+import matplotlib
+matplotlib.use("Agg")  # files only: works without a display
+import matplotlib.pyplot as plt
+import numpy as np
+
+from cellphase_results import (ResultsError, describe_fields, read_fields, read_observables,
+                               zero_level_set_2d)
+
+PROG = "plot_run.py"
+
+
+def relative_change(values):
+    return values / values[0] - 1 if values[0] != 0 else values - values[0]
+
+
+def plot_observables(obs, dim, title, path):
+    size = {2: "area", 3: "volume"}.get(dim, "volume")
+    membrane = {2: "length", 3: "area"}.get(dim, "length/area")
+    # Each panel: title, y label, [(column, curve label, transform)].
+    panels = [
+        (f"cell {size}", "relative change", [("volume", None, relative_change)]),
+        (f"membrane {membrane}", "relative change", [("surface", None, relative_change)]),
+        ("energy", "energy", [("helfrich_energy", "Helfrich", None), ("total_energy", "total", None),
+                              ("energy_ch", "Cahn-Hilliard", None)]),
+        ("circularity", "circularity", [("circularity", None, None)]),
+        ("centre of mass", "position", [("center_x", "x", None), ("center_y", "y", None),
+                                        ("center_z", "z", None)]),
+        ("degrees of freedom", "dofs", [("dofs", None, None)]),
+    ]
+    # Keep the curves whose column exists and is not all zero, and the panels left with one.
+    panels = [(panel, ylabel, kept) for panel, ylabel, curves in panels
+              if (kept := [c for c in curves if c[0] in obs and np.any(obs[c[0]] != 0)])]
+    ncols = 3 if len(panels) > 4 else 2
+    nrows = max(1, -(-len(panels) // ncols))
+    fig, axes = plt.subplots(nrows, ncols, figsize=(4.5 * ncols, 3.2 * nrows), squeeze=False,
+                             constrained_layout=True)
+    for ax, (panel, ylabel, curves) in zip(axes.flat, panels):
+        for column, label, transform in curves:
+            y = obs[column] if transform is None else transform(obs[column])
+            ax.plot(obs["time"], y, label=label)
+        ax.set(title=panel, xlabel="time", ylabel=ylabel)
+        if len(curves) > 1:
+            ax.legend()
+    for ax in axes.flat[len(panels):]:
+        ax.set_visible(False)
+    fig.suptitle(f"{title}: observables")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_timings(obs, title, path):
+    parts = [c for c in obs if c.startswith("wall_") and np.any(obs[c] != 0)]
+    fig, ax = plt.subplots(figsize=(9, 4.5), constrained_layout=True)
+    if parts:
+        labels = [f"{c[5:]} ({obs[c].sum():.3g} s)" for c in parts]  # total per part in the legend
+        # step="mid": each step is a flat band, not a ramp between neighbouring steps.
+        ax.stackplot(obs["step"], *[obs[c] for c in parts], labels=labels, step="mid")
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1))
+    else:
+        ax.text(0.5, 0.5, "no timings recorded", ha="center", transform=ax.transAxes)
+    ax.set(title=f"{title}: wall time per step", xlabel="step", ylabel="seconds")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_level_sets(run_dir, field, title, path):
+    """Zero level set of `field` (on a triangle mesh) at every output time."""
+    times, curves, bounds = [], [], []
+    for time, points, cells, values in read_fields(run_dir, fields=[field]):
+        times.append(time)
+        curves.append(zero_level_set_2d(points[:, :2], cells, values[field]))
+        bounds.append((points[:, :2].min(axis=0), points[:, :2].max(axis=0)))
+    if not times:
+        raise ResultsError(f"{run_dir / 'fields.xdmf'}: field {field} has no output times")
+    fig, ax = plt.subplots(figsize=(6.5, 5.5), constrained_layout=True)
+    # Guard a single output time: a zero-width colour range cannot be drawn.
+    norm = plt.Normalize(min(times), max(times) if max(times) > min(times) else min(times) + 1)
+    cmap = plt.get_cmap("viridis")
+    for time, pieces in zip(times, curves):
+        for piece in pieces:
+            ax.plot(piece[:, 0], piece[:, 1], color=cmap(norm(time)), lw=1.2)
+    lower = np.min([b[0] for b in bounds], axis=0)
+    upper = np.max([b[1] for b in bounds], axis=0)
+    ax.set(xlim=(lower[0], upper[0]), ylim=(lower[1], upper[1]), xlabel="x", ylabel="y",
+           title=f"{title}: zero level set of {field}")
+    ax.set_aspect("equal")
+    fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, label="time")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog=PROG, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("run_dir", metavar="RUN_DIR", type=Path,
+                        help="output directory of a run (holds observables.csv, fields.xdmf)")
+    parser.add_argument("--out", metavar="DIR", type=Path,
+                        help="where to write the plots (default: RUN_DIR/plots)")
+    parser.add_argument("--fields", metavar="NAME", nargs="+", default=["phi"],
+                        help="fields whose zero level set is drawn (default: phi)")
+    args = parser.parse_args(argv)
+
+    def fail(message):
+        print(f"{PROG}: error: {message}", file=sys.stderr)
+        return 1
+
+    run_dir = args.run_dir
+    if not run_dir.is_dir():
+        return fail(f"{run_dir}: no such directory")
+    try:
+        obs = read_observables(run_dir)
+        # Reads the XDMF only (not the HDF5 data): field names, and 2D or 3D for the labels.
+        has_fields = (run_dir / "fields.xdmf").is_file()
+        names, dim = describe_fields(run_dir) if has_fields else ([], None)
+    except ResultsError as e:
+        return fail(e)
+    if len(obs["time"]) == 0:
+        return fail(f"{run_dir / 'observables.csv'}: no complete rows")
+    missing = [f for f in args.fields if f not in names]
+    if has_fields and missing:
+        return fail(f"no field {', '.join(missing)} in {run_dir / 'fields.xdmf'} "
+                    f"(it has: {', '.join(names) or 'none'})")
+
+    out = args.out or run_dir / "plots"
+    out.mkdir(parents=True, exist_ok=True)
+    title = run_dir.resolve().name
+    plot_observables(obs, dim, title, out / "observables.png")
+    plot_timings(obs, title, out / "timings.png")
+    print(out / "observables.png")
+    print(out / "timings.png")
+
+    if not has_fields:
+        print(f"note: {run_dir / 'fields.xdmf'} not found: plotted the observables only")
+    elif dim != 2:
+        print("note: level sets are plotted for 2D runs only")
+    else:
+        for field in args.fields:
+            path = out / ("level_sets.png" if field == "phi" else f"level_sets_{field}.png")
+            try:
+                plot_level_sets(run_dir, field, title, path)
+            except ResultsError as e:
+                return fail(e)
+            print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
