@@ -3,7 +3,7 @@
 #   w       = 1/Be ( Lap mu - W0''(phi) mu / eps^2 + p2 (A - A0) kappa ),           (3.35)
 #   mu      = eps Lap phi - W0'(phi)/eps,                                           (3.23)
 # natural boundary conditions grad w . n = grad mu . n = 0 keep int phi exactly.
-# lam_a = p2 (A(phi^n) - A0) is explicit (computed in C++).
+# lam_a = p2 (A - A0) is evaluated at t^{n+1} through the unit load below (C++).
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
@@ -33,6 +33,10 @@ a_stab = common + (1 / (Be * eps**2) * S * mu * zeta + S / eps * phi * nu) * dx
 L_stab = rhs_common + (- 1 / (Be * eps**2) * (ddW0(phi0, eps, H0) - S) * mu0 * zeta
                        - (dW0(phi0, eps, H0) - S * phi0) / eps * nu) * dxq
 
+# Unit load of the area penalty: the solution is linear in lam_a, so the penalty can be
+# evaluated at t^{n+1} (with E_CH linearised) instead of explicitly; see PhaseFieldModule.
+load_a = 1 / Be * kappa0 * zeta * dxq
+
 # Initial mu from phi^0 (L2 projection of (3.23))
 V = FunctionSpace(domain, P2)
 m, q = TrialFunction(V), TestFunction(V)
@@ -40,4 +44,4 @@ phi_init = Coefficient(V)
 a_mu = m * q * dx
 L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q) * dxq
 
-forms = [a, L, a_stab, L_stab, a_mu, L_mu]
+forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu]

@@ -3,8 +3,7 @@
 #   d_t phi = -gamma/Be ( Lap mu - W0''(phi) mu / eps^2 + lam_v + lam_a kappa^n ),   (3.27)
 #   mu      = eps Lap phi - W0'(phi)/eps,                                          (3.23)
 # boundary conditions phi = -1 (or natural), grad mu . n = 0 (section 3.4.1).
-# lam_v, lam_a are the multipliers (computed implicitly in C++ from the unit loads below)
-# or the explicit penalties p1 (V - V0), p2 (A - A0) (3.32) of phi^n.
+# lam_v, lam_a are computed in C++ from the unit loads below.
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
@@ -40,9 +39,9 @@ L_stab = rhs_common + (g / eps**2 * (ddW0(phi0, eps, H0) - S) * mu0 * psi
                        - (dW0(phi0, eps, H0) - S * phi0) / eps * nu) * dxq
 
 # Unit loads of the multipliers: the solution is linear in (lam_v, lam_a), so
-# phi^{n+1} = phi_0 + lam_v phi_v + lam_a phi_a, and the 2x2 system that makes
-# V(phi^{n+1}) = V0 and the linearised E_CH(phi^{n+1}) = A0 hold gives the multipliers of
-# (3.25)-(3.29) implicitly (the explicit treatment violates the constraints, section 3.4.1).
+# phi^{n+1} = phi_0 + lam_v phi_v + lam_a phi_a, and a 2x2 system gives multipliers that
+# hold the constraints at t^{n+1} (3.28)-(3.29) (the explicit treatment violates them,
+# section 3.4.1), or penalties p1 (V - V0), p2 (A - A0) evaluated at t^{n+1} (3.32).
 load_v = -g * psi * dx
 load_a = -g * kappa0 * psi * dxq
 

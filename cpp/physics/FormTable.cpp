@@ -44,6 +44,7 @@ namespace cellphase
     break;                                                                                      \
   case scene::Model::helfrich_hm1:                                                              \
     CELLPHASE_SYSTEM(helfrich_hm1, D)                                                           \
+    f.load_a = form_helfrich_hm1_##D##_load_a;                                                  \
     CELLPHASE_MU_PROJECTION(helfrich_hm1, D)                                                    \
     break;                                                                                      \
   }

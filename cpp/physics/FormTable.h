@@ -19,8 +19,8 @@ struct ModelForms
   ufcx_form* L_mu = nullptr;
   // Integrals of the explicit multipliers
   ufcx_form* dW_integral = nullptr;  ///< (2.27), allen_cahn
-  ufcx_form* load_v = nullptr;       ///< unit loads of the multipliers (3.27), helfrich_l2
-  ufcx_form* load_a = nullptr;
+  ufcx_form* load_v = nullptr;       ///< unit loads of the volume and area multipliers or
+  ufcx_form* load_a = nullptr;       ///< penalties, evaluated at t^{n+1} (Helfrich models)
 };
 
 /// Functionals of forms/observables.py on the standalone P2 fields phi and mu.

@@ -120,11 +120,8 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   solver_ = std::make_unique<LinearSolver>(comm_, "phasefield_", scene_.numerics.petsc);
   b_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
   x_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
-  if (load_v_)
-  {
-    x_v_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
-    x_a_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
-  }
+  for (auto& load : loads_)
+    load.x = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
 
   if (forms_.a_mu && fields.find("mu") == fields.end())
     compute_mu_from_phi();
@@ -145,10 +142,15 @@ void PhaseFieldModule::bind_forms()
   CoefficientMap phi_only{{"phi", fields_.at("phi")}};
   phi_integral_ = compat::create_form(*obs.phi_integral, {}, phi_only, constants_, mesh);
   energy_ch_ = compat::create_form(*obs.energy_ch, {}, phi_only, constants_, mesh);
-  if (forms_.load_v)
+  loads_.clear();
+  if (forms_.load_a)
   {
-    load_v_ = compat::create_form(*forms_.load_v, {W_}, coeffs, constants_);
-    load_a_ = compat::create_form(*forms_.load_a, {W_}, coeffs, constants_);
+    const auto& pf = scene_.phase_field;
+    if (forms_.load_v)
+      loads_.push_back({UnitLoad::volume, compat::create_form(*forms_.load_v, {W_}, coeffs, constants_),
+                        nullptr, lam_v_, pf.penalty_volume});
+    loads_.push_back({UnitLoad::area, compat::create_form(*forms_.load_a, {W_}, coeffs, constants_),
+                      nullptr, lam_a_, pf.penalty_area});
     delta_ = std::make_shared<Function>(V_);
     delta_integral_ = compat::create_form(*obs.phi_integral, {}, {{"phi", delta_}}, constants_, mesh);
     // phi^n is the linearisation point of E_CH: bound to the standalone field, which
@@ -181,7 +183,6 @@ void PhaseFieldModule::update_multipliers(double dt)
 {
   const auto& pf = scene_.phase_field;
   const double theta = pf.constraint_relaxation;
-  const double g = pf.mobility / scene_.numbers.Be;
   switch (pf.model)
   {
   case Model::allen_cahn_volume:
@@ -192,12 +193,11 @@ void PhaseFieldModule::update_multipliers(double dt)
                         - integral(dW_integral_)) / domain_volume_;
     break;
   }
+  case Model::helfrich_lagrange:
   case Model::helfrich_penalty:
-    lam_v_->value[0] = pf.penalty_volume * (integral(phi_integral_) - targets_.volume); // (3.32)
-    lam_a_->value[0] = pf.penalty_area * (integral(energy_ch_) - targets_.area);
-    break;
   case Model::helfrich_hm1:
-    lam_a_->value[0] = pf.penalty_area * (integral(energy_ch_) - targets_.area); // (3.35)
+    // The base solve has no constraint forces; apply_constraint_loads() adds them.
+    lam_v_->value[0] = lam_a_->value[0] = 0;
     break;
   default:
     break;
@@ -212,52 +212,67 @@ void PhaseFieldModule::extract_phi(const la::Vector<T>& x, Function& phi) const
     out[d] = in[to_mixed_[0][d]];
 }
 
-void PhaseFieldModule::apply_implicit_multipliers()
+void PhaseFieldModule::apply_constraint_loads()
 {
   // Unit loads are homogeneous at Dirichlet rows (scale 0): phi^{n+1} keeps its BC value.
-  for (auto [form, x] : {std::pair{load_v_, x_v_.get()}, std::pair{load_a_, x_a_.get()}})
+  for (auto& load : loads_)
   {
     b_->set(0.0);
-    fem::assemble_vector(b_->mutable_array(), *form);
+    fem::assemble_vector(b_->mutable_array(), *load.form);
     b_->scatter_rev(std::plus<T>());
     fem::set_bc<T>(b_->mutable_array(), bcs_, 0.0);
-    solver_->solve(*b_, *x, "the multiplier loads of helfrich_lagrange");
+    solver_->solve(*b_, *load.x, "the constraint loads of the phase field");
   }
-  // Volume (3.10) and first-order area (3.11) of phi_0 + lam_v phi_v + lam_a phi_a:
-  //   int phi_0 + lam_v int phi_v + lam_a int phi_a = V0
-  //   A(phi^n) + dA[phi_0 - phi^n] + lam_v dA[phi_v] + lam_a dA[phi_a] = A0
+  // phi^{n+1} = phi_0 + sum_j m_j phi_j. Its volume (3.10) is linear in m, its area
+  // (3.11) is linearised about phi^n: A = A(phi^n) + dA[phi_0 - phi^n] + sum_j m_j dA[phi_j].
+  const std::size_t K = loads_.size();
   auto phi_n = fields_.at("phi");
-  std::array<double, 3> vol, darea;
-  const std::array<const la::Vector<T>*, 3> xs{x_.get(), x_v_.get(), x_a_.get()};
-  for (int k = 0; k < 3; ++k)
+  std::vector<double> vol(K + 1), darea(K + 1);
+  for (std::size_t j = 0; j <= K; ++j)
   {
-    extract_phi(*xs[k], *delta_);
-    if (k == 0)
+    extract_phi(j == 0 ? *x_ : *loads_[j - 1].x, *delta_);
+    vol[j] = integral(delta_integral_);
+    if (j == 0)
     {
       auto d = delta_->x()->mutable_array();
       auto p = phi_n->x()->array();
-      vol[0] = integral(delta_integral_);
       for (std::size_t i = 0; i < d.size(); ++i)
         d[i] -= p[i];
-      darea[0] = integral(delta_area_variation_);
     }
-    else
-    {
-      vol[k] = integral(delta_integral_);
-      darea[k] = integral(delta_area_variation_);
-    }
+    darea[j] = integral(delta_area_variation_);
   }
-  const double r1 = targets_.volume - vol[0];
-  const double r2 = targets_.area - integral(energy_ch_) - darea[0];
-  const double det = vol[1] * darea[2] - vol[2] * darea[1];
-  const double lv = (r1 * darea[2] - vol[2] * r2) / det;
-  const double la = (vol[1] * r2 - darea[1] * r1) / det;
-  lam_v_->value[0] = lv;
-  lam_a_->value[0] = la;
+  darea[0] += integral(energy_ch_);
+  // One row per load: multipliers hold g(phi^{n+1}) = target (3.28)-(3.29); penalties are
+  // m = p (g(phi^{n+1}) - target) (3.32)/(3.35).
+  const bool multipliers = scene_.phase_field.model == Model::helfrich_lagrange;
+  std::array<std::array<double, 2>, 2> M{};
+  std::array<double, 2> r{};
+  for (std::size_t k = 0; k < K; ++k)
+  {
+    const auto& g = loads_[k].kind == UnitLoad::volume ? vol : darea;
+    const double target = loads_[k].kind == UnitLoad::volume ? targets_.volume : targets_.area;
+    const double p = loads_[k].penalty;
+    for (std::size_t j = 0; j < K; ++j)
+      M[k][j] = multipliers ? g[j + 1] : (k == j) - p * g[j + 1];
+    r[k] = multipliers ? target - g[0] : p * (g[0] - target);
+  }
+  std::array<double, 2> m{};
+  if (K == 1)
+    m[0] = r[0] / M[0][0];
+  else
+  {
+    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    m[0] = (r[0] * M[1][1] - M[0][1] * r[1]) / det;
+    m[1] = (M[0][0] * r[1] - M[1][0] * r[0]) / det;
+  }
   auto x = x_->mutable_array();
-  auto xv = x_v_->array(), xa = x_a_->array();
-  for (std::size_t i = 0; i < x.size(); ++i)
-    x[i] += lv * xv[i] + la * xa[i];
+  for (std::size_t k = 0; k < K; ++k)
+  {
+    loads_[k].value->value[0] = m[k];
+    auto xk = loads_[k].x->array();
+    for (std::size_t i = 0; i < x.size(); ++i)
+      x[i] += m[k] * xk[i];
+  }
 }
 
 void PhaseFieldModule::gather_state()
@@ -313,8 +328,8 @@ StepTimings PhaseFieldModule::step(double dt)
   }
   auto t1 = std::chrono::steady_clock::now();
   solver_->solve(*b_, *x_, std::string("phase field (") + scene::to_string(scene_.phase_field.model) + ")");
-  if (load_v_)
-    apply_implicit_multipliers();
+  if (!loads_.empty())
+    apply_constraint_loads();
   scatter_state();
   t.solve = seconds_since(t1);
   return t;

@@ -53,9 +53,10 @@ private:
   void bind_forms();
   void compute_mu_from_phi();
   void update_multipliers(double dt);
-  /// helfrich_lagrange: solve for the unit loads and combine them with the multipliers
-  /// that make the volume and the (linearised) area of phi^{n+1} equal to the targets.
-  void apply_implicit_multipliers();
+  /// Helfrich models: solve for the unit loads and add them with the multipliers that
+  /// hold the constraints at t^{n+1} (helfrich_lagrange) or with the penalties evaluated
+  /// at t^{n+1} (helfrich_penalty, helfrich_hm1), E_CH linearised about phi^n.
+  void apply_constraint_loads();
   /// phi part of a mixed vector into a P2 function
   void extract_phi(const dolfinx::la::Vector<T>& x, Function& phi) const;
   void gather_state();   ///< standalone fields -> mixed vector u0
@@ -76,10 +77,18 @@ private:
   BCs bcs_;
   std::shared_ptr<Form> a_, L_;
   std::shared_ptr<Form> dW_integral_, phi_integral_, energy_ch_;
-  // helfrich_lagrange: unit loads, their solutions and functionals of their phi parts
-  std::shared_ptr<Form> load_v_, load_a_;
-  std::unique_ptr<dolfinx::la::Vector<T>> x_v_, x_a_;
-  std::shared_ptr<Function> delta_;
+  /// The solution is linear in each multiplier/penalty: its load and the solution for a
+  /// unit value of it.
+  struct UnitLoad
+  {
+    enum Kind { volume, area } kind;
+    std::shared_ptr<Form> form;
+    std::unique_ptr<dolfinx::la::Vector<T>> x;
+    std::shared_ptr<Constant> value;
+    double penalty; ///< p1 or p2 (penalty models)
+  };
+  std::vector<UnitLoad> loads_;
+  std::shared_ptr<Function> delta_; ///< phi part of a solution, for the functionals below
   std::shared_ptr<Form> delta_integral_, delta_area_variation_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;

@@ -1,0 +1,53 @@
+"""Helpers shared by the tests that run the `cellphase` executable."""
+import csv
+import os
+import shutil
+import subprocess
+
+import pytest
+import yaml
+
+EXE = os.environ.get("CELLPHASE_EXE")
+
+
+def require_exe():
+    if not EXE:
+        pytest.skip("CELLPHASE_EXE is not set (run the tests through ctest)")
+
+
+def mpirun_prefix(ranks):
+    if ranks == 1:
+        return []
+    launcher = shutil.which("mpirun")
+    if launcher is None:
+        pytest.skip("mpirun not found")
+    extra = ["--allow-run-as-root"] if os.geteuid() == 0 else []
+    return [launcher, *extra, "--oversubscribe", "-n", str(ranks)]
+
+
+def run_scene(scene, workdir, ranks=1, timeout=900):
+    """Write `scene` (a dict) to workdir, run it, return observables as columns."""
+    require_exe()
+    scene = dict(scene)
+    scene.setdefault("output", {})
+    scene["output"] = {"every": 0, "progress": False, **scene["output"],
+                       "directory": str(workdir / "out")}
+    path = workdir / "scene.yaml"
+    path.write_text(yaml.safe_dump(scene))
+    proc = subprocess.run(mpirun_prefix(ranks) + [EXE, "run", str(path)], capture_output=True,
+                          text=True, timeout=timeout)
+    assert proc.returncode == 0, f"cellphase failed:\n{proc.stdout}\n{proc.stderr}"
+    with open(workdir / "out" / "observables.csv") as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]}
+
+
+def circle_scene(model, epsilon=0.08, radius=1.0, **numerics):
+    """A circle (or ellipse with semi_axes) in [-2, 2]^2 for quick runs."""
+    return {
+        "domain": {"lower": [-2, -2], "upper": [2, 2], "resolution": [16, 16]},
+        "cells": [{"shape": "circle", "center": [0, 0], "radius": radius}],
+        "phase_field": {"model": model},
+        "numerics": {"epsilon": epsilon, "dt": 1e-3, "end_time": 0.01,
+                     "mesh": {"remesh_every": 0, "points_across_interface": 4}, **numerics},
+    }
