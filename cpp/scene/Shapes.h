@@ -12,6 +12,8 @@ namespace cellphase::scene
 /// ellipses/ellipsoids; first-order estimate f/|grad f| for Cassini ovals (accurate near
 /// the zero level set, which is all the tanh profile needs); user-given for expressions.
 /// Expressions are evaluated in the cell's frame (centre subtracted, rotation undone).
+/// Copies of an expression cell share one muparser instance: do not evaluate them from
+/// several threads at once (MPI ranks are separate processes and are fine).
 class SignedDistance
 {
 public:

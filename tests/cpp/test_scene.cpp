@@ -658,6 +658,7 @@ TEST(SceneErrors, OutOfRange)
 {
   EXPECT_ERROR(minimal_with("epsilon: 0.05", "epsilon: 0"), "numerics.epsilon: found 0, expected a number > 0");
   EXPECT_ERROR(minimal_with("end_time: 0.1", "end_time: 1e-4"), "expected a number >= numerics.dt");
+  EXPECT_ERROR(minimal_with("dt: 1.0e-3", "dt: 1.0e-300"), "at most 1e9 steps are allowed");
   EXPECT_ERROR(minimal_with("radius: 1", "radius: -1"), "cells[0].radius: found -1, expected a number > 0");
   EXPECT_ERROR(minimal_with("upper: [2, 2]", "upper: [2, -3]"), "domain.upper: on axis 1");
   EXPECT_ERROR(minimal_with("resolution: [16, 16]", "resolution: [0, 16]"),
