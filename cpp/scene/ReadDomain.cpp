@@ -59,11 +59,18 @@ void read_domain(const Section& top, Scene& s)
       d.fail("upper", "on axis " + std::to_string(i) + " upper (" + fmt(s.domain.upper[i])
                           + ") is not greater than lower (" + fmt(s.domain.lower[i])
                           + "); upper must exceed lower on every axis");
+}
 
+void read_boundary(const Section& top, Scene& s)
+{
+  // The H^-1 flows conserve int phi exactly only without a Dirichlet row on phi, so they
+  // default to natural conditions; the L2 flows default to phi = -1 (2.19).
+  const Model m = s.phase_field.model;
+  const bool conserving = m == Model::cahn_hilliard || m == Model::helfrich_hm1;
   const Section b = top.section("boundary");
   b.allow_only({"phi"});
   s.phi_boundary = b.choice<PhiBoundary>(
-      "phi", PhiBoundary::dirichlet,
+      "phi", conserving ? PhiBoundary::neumann : PhiBoundary::dirichlet,
       {{"dirichlet", PhiBoundary::dirichlet}, {"neumann", PhiBoundary::neumann}});
 }
 

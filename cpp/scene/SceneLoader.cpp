@@ -60,6 +60,7 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
     s.source = source;
     read_domain(top, s);
     read_phase_field(top, s);
+    read_boundary(top, s);
     read_numbers(top, s);
     read_numerics(top, s);
     read_cells(top, s);

@@ -8,6 +8,7 @@
 namespace cellphase::scene
 {
 void read_domain(const yaml::Section& top, Scene& s);       ///< domain, boundary
+void read_boundary(const yaml::Section& top, Scene& s);
 void read_phase_field(const yaml::Section& top, Scene& s);  ///< phase_field
 void read_numbers(const yaml::Section& top, Scene& s);      ///< numbers or units
 void read_numerics(const yaml::Section& top, Scene& s);     ///< numerics

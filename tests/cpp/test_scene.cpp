@@ -164,7 +164,10 @@ TEST(SceneParse, Defaults)
 {
   const Scene s = parse_scene(minimal_scene, "min.yaml");
   const Scene d; // defaults of Scene.h
-  EXPECT_EQ(s.phi_boundary, PhiBoundary::dirichlet);
+  // H^-1 flows default to natural conditions on phi, L2 flows to phi = -1 (2.19)
+  EXPECT_EQ(s.phi_boundary, PhiBoundary::neumann);
+  EXPECT_EQ(parse_scene(minimal_scene, "min.yaml", {"phase_field.model=allen_cahn"}).phi_boundary,
+            PhiBoundary::dirichlet);
   EXPECT_EQ(s.cells[0].name, "cells[0]");
   EXPECT_EQ(s.cells[0].shape, ShapeKind::circle);
   EXPECT_DOUBLE_EQ(s.cells[0].center[0], 0);
