@@ -54,8 +54,7 @@ std::shared_ptr<Form> create_form(const ufcx_form& form,
                                   const CoefficientMap& coefficients, const ConstantMap& constants,
                                   std::shared_ptr<const Mesh> mesh)
 {
-  // Keep only the names the form uses: create_form rejects missing names, not extra ones,
-  // but being explicit makes the error message point at the form.
+  // Names the form does not use are ignored; a missing name throws, naming it.
   const std::map<fem::IntegralType, const mesh::MeshTags<int>*> subdomains;
   return std::make_shared<Form>(
       fem::create_form<T>(form, spaces, coefficients, constants, subdomains, mesh));

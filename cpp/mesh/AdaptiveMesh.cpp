@@ -31,7 +31,7 @@ std::vector<std::int32_t> AdaptiveMesh::mark(const Mesh& mesh, const PointEvalua
   std::vector<std::array<int, 3>> lattice;
   for (int i = 0; i <= n; ++i)
     for (int j = 0; i + j <= n; ++j)
-      for (int k = 0; i + j + k <= (tdim == 3 ? n : i + j); ++k)
+      for (int k = 0; k <= (tdim == 3 ? n - i - j : 0); ++k)
         lattice.push_back({i, j, k});
   const std::int32_t ncells = compat::num_owned_cells(mesh);
   std::vector<double> pts;

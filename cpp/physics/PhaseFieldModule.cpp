@@ -324,6 +324,7 @@ StepTimings PhaseFieldModule::step(double dt)
   if (rebuild)
   {
     t.factorise = solver_->set_operator(A_->mat());
+    ++factorisations_;
     matrix_current_ = true;
   }
   auto t1 = std::chrono::steady_clock::now();

@@ -47,7 +47,8 @@ public:
   std::array<double, 2> multipliers() const { return {lam_v_->value[0], lam_a_->value[0]}; }
   /// Energy whose gradient flow the model is: E_CH, E_H or E_H plus penalties (3.30)/(3.33).
   double total_energy(double phi_integral, double energy_ch, double helfrich) const;
-  int factorisations() const { return solver_ ? solver_->factorisations() : 0; }
+  /// Matrix factorisations since the start (all meshes).
+  int factorisations() const { return factorisations_; }
 
 private:
   void bind_forms();
@@ -98,5 +99,6 @@ private:
   std::shared_ptr<Constant> dt_, lam_v_, lam_a_;
   ConstraintTargets targets_;
   double domain_volume_;
+  int factorisations_ = 0;
 };
 } // namespace cellphase

@@ -28,11 +28,9 @@ public:
   double set_operator(Mat A);
   /// x = A^-1 b with the last factorisation; throws SolverError naming `what` on failure.
   void solve(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>& x, const std::string& what);
-  int factorisations() const { return factorisations_; }
 
 private:
   KSP ksp_ = nullptr;
   std::string prefix_;
-  int factorisations_ = 0;
 };
 } // namespace cellphase
