@@ -86,7 +86,8 @@ private:
     std::shared_ptr<Form> form;
     std::unique_ptr<dolfinx::la::Vector<T>> x;
     std::shared_ptr<Constant> value;
-    double penalty; ///< p1 or p2 (penalty models)
+    double penalty;       ///< p1 or p2 (penalty models)
+    bool current = false; ///< x solves the current matrix (the volume load is constant)
   };
   std::vector<UnitLoad> loads_;
   std::shared_ptr<Function> delta_; ///< phi part of a solution, for the functionals below
