@@ -89,7 +89,8 @@ SizeEstimate estimate_size(const Scene& s)
 {
   const Domain& d = s.domain;
   SizeEstimate e;
-  e.base_cells = d.dim == 2 ? 2.0 * d.resolution[0] * d.resolution[1]
+  // 2D base meshes have crossed diagonals: four triangles per rectangle
+  e.base_cells = d.dim == 2 ? 4.0 * d.resolution[0] * d.resolution[1]
                             : 6.0 * d.resolution[0] * d.resolution[1] * d.resolution[2];
   for (const Cell& c : s.cells)
     e.interface_measure += interface_measure(d, SignedDistance(c, d.dim));
