@@ -535,7 +535,7 @@ TEST(SceneCheck, SizeEstimate)
   const Scene s = parse_scene(minimal_scene, "min.yaml");
   const SizeEstimate e = estimate_size(s);
   EXPECT_NEAR(e.interface_measure, 2 * M_PI, 0.01 * 2 * M_PI);
-  EXPECT_DOUBLE_EQ(e.base_cells, 2 * 16 * 16);
+  EXPECT_DOUBLE_EQ(e.base_cells, 4 * 16 * 16); // crossed diagonals: four triangles per square
   // Band 2 atanh(0.95) sqrt2 eps + 2 h_base, finest triangles h^2/2 with h = 0.25/8.
   const double band = 2 * std::atanh(0.95) * std::sqrt(2.0) * 0.05 + 0.5;
   const double h = 0.25 / 8;
