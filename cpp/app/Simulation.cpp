@@ -2,7 +2,7 @@
 #include "io/Progress.h"
 #include "mesh/FieldTransfer.h"
 #include "scene/Shapes.h"
-#include <chrono>
+#include "util/Clock.h"
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -12,11 +12,6 @@ namespace cellphase
 {
 namespace
 {
-double seconds_since(std::chrono::steady_clock::time_point t0)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 int rank_of(MPI_Comm comm)
 {
   int r;
@@ -77,7 +72,7 @@ void Simulation::initialise()
 
 double Simulation::remesh(double& volume_change)
 {
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   auto phi = module_.fields().at("phi");
   auto mesh = adaptive_.build(compat::make_evaluator(phi));
   auto V = create_p2_space(mesh, scene_.domain.dim);
@@ -112,7 +107,7 @@ void Simulation::record(int step, double time, const StepTimings& timings, doubl
                   scene_.output.directory.c_str());
     throw NumericalFailure(msg);
   }
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   if (writer_ && step % scene_.output.every == 0)
     writer_->write(module_.fields(), time);
   r.output_time = seconds_since(t0);

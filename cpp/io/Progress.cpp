@@ -1,15 +1,11 @@
 #include "io/Progress.h"
+#include "util/Clock.h"
 #include <cstdio>
 
 namespace cellphase
 {
 namespace
 {
-double since(std::chrono::steady_clock::time_point t)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 void format_duration(double s, char* buf, std::size_t n)
 {
   if (s < 120)
@@ -22,7 +18,7 @@ void format_duration(double s, char* buf, std::size_t n)
 } // namespace
 
 Progress::Progress(MPI_Comm comm, double end_time, bool enabled)
-    : end_time_(end_time), start_(std::chrono::steady_clock::now()), last_(start_)
+    : end_time_(end_time), start_(Clock::now()), last_(start_)
 {
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -31,10 +27,10 @@ Progress::Progress(MPI_Comm comm, double end_time, bool enabled)
 
 void Progress::update(int step, double time)
 {
-  if (!enabled_ || since(last_) < 5.0)
+  if (!enabled_ || seconds_since(last_) < 5.0)
     return;
-  last_ = std::chrono::steady_clock::now();
-  const double elapsed = since(start_);
+  last_ = Clock::now();
+  const double elapsed = seconds_since(start_);
   const double fraction = time / end_time_;
   char el[32], rem[32];
   format_duration(elapsed, el, sizeof el);
@@ -49,7 +45,7 @@ void Progress::finish(int step, double time)
   if (!enabled_)
     return;
   char el[32];
-  format_duration(since(start_), el, sizeof el);
+  format_duration(seconds_since(start_), el, sizeof el);
   std::printf("  finished: %d steps to t = %g in %s\n", step, time, el);
   std::fflush(stdout);
 }

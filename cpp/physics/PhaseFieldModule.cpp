@@ -1,5 +1,5 @@
 #include "physics/PhaseFieldModule.h"
-#include <chrono>
+#include "util/Clock.h"
 #include <cmath>
 
 namespace cellphase
@@ -9,11 +9,6 @@ using scene::Model;
 
 namespace
 {
-double seconds_since(std::chrono::steady_clock::time_point t0)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 std::shared_ptr<Constant> constant(double v) { return std::make_shared<Constant>(v); }
 
 /// Assemble a bilinear form into a new PETSc matrix, with identity rows for the BCs.
@@ -305,7 +300,7 @@ void PhaseFieldModule::scatter_state()
 StepTimings PhaseFieldModule::step(double dt)
 {
   StepTimings t;
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   if (dt != dt_->value[0])
   {
     dt_->value[0] = dt;
@@ -334,7 +329,7 @@ StepTimings PhaseFieldModule::step(double dt)
       load.current = false;
     matrix_current_ = true;
   }
-  auto t1 = std::chrono::steady_clock::now();
+  auto t1 = Clock::now();
   solver_->solve(*b_, *x_, std::string("phase field (") + scene::to_string(scene_.phase_field.model) + ")");
   if (!loads_.empty())
     apply_constraint_loads();

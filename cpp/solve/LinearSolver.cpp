@@ -1,5 +1,5 @@
 #include "solve/LinearSolver.h"
-#include <chrono>
+#include "util/Clock.h"
 
 namespace cellphase
 {
@@ -25,10 +25,10 @@ LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
 
 double LinearSolver::set_operator(Mat A)
 {
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   KSPSetOperators(ksp_, A, A);
   KSPSetUp(ksp_);
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return seconds_since(t0);
 }
 
 void LinearSolver::solve(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>& x,
