@@ -7,6 +7,7 @@
 #include "solve/LinearSolver.h"
 #include <dolfinx/common/log.h>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -93,6 +94,15 @@ bool parse(int argc, char** argv, Arguments& args, std::string& error)
   return true;
 }
 
+/// Rank given by the MPI launcher's environment (0 when not started by mpirun).
+int launcher_rank()
+{
+  for (const char* var : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char* v = std::getenv(var))
+      return std::atoi(v);
+  return 0;
+}
+
 int run(const cellphase::scene::Scene& scene)
 {
   int rank;
@@ -152,7 +162,9 @@ int main(int argc, char** argv)
   }
   catch (const cellphase::scene::SceneError& e)
   {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    // The scene is read before MPI starts; under mpirun only the first rank reports.
+    if (launcher_rank() == 0)
+      std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
   }
   if (args.command == "check")
