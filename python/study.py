@@ -1,0 +1,169 @@
+#!/usr/bin/python3
+"""Run a study (a convergence ladder or a parameter sweep) of a cellphase scene and report it.
+
+  study.py run STUDY.yaml [--jobs N] [--mpi N]   run the members not yet done, write the report
+  study.py report STUDY.yaml                     rewrite the report from the existing results
+
+Each member runs in OUTPUT/<member>/ (observables.csv, stdout.txt, stderr.txt). After a
+successful run the runner writes OUTPUT/<member>/done with the measured wall time and peak
+memory; members with that marker are skipped on the next run. The report is OUTPUT/report.md
+with error_vs_walltime.png (ladder) or end_state.png (sweep). See docs/studies.md.
+Exit status: 0 all members finished, 1 some member failed, 2 bad study file or usage.
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from cellphase_results import ResultsError, read_observables  # noqa: E402
+from study_file import StudyError, format_value, load_study  # noqa: E402
+from study_report import write_convergence_report, write_sweep_report  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+DONE = "done"      # marker of a finished member: JSON with wall time and peak memory
+FAILED = "failed"  # marker of a failed member: JSON with exit status and message
+
+
+def find_executable(given=None):
+    exe = given or os.environ.get("CELLPHASE_EXE") or ROOT / "build" / "cellphase"
+    if not Path(exe).is_file():
+        raise StudyError(f"cellphase executable {exe} not found "
+                         "(build it, or pass --exe or set CELLPHASE_EXE)")
+    return str(exe)
+
+
+def mpi_prefix(ranks, jobs=1):
+    """mpirun with one BLAS thread per rank: the ranks already use the cores."""
+    if ranks <= 1:
+        return []
+    root = ["--allow-run-as-root"] if os.geteuid() == 0 else []
+    over = ["--oversubscribe"] if ranks * jobs > (os.cpu_count() or 1) else []
+    return ["mpirun", *root, *over, "-x", "OPENBLAS_NUM_THREADS", "-n", str(ranks)]
+
+
+def run_command(args, run_dir, env=None):
+    """Run args with stdout/stderr in run_dir; return (exit status, wall s, peak MB).
+
+    os.wait4 gives the resource usage of this child alone (ru_maxrss is the largest
+    resident set of it and its descendants), so members running at once are measured apart.
+    """
+    with open(run_dir / "stdout.txt", "w") as out, open(run_dir / "stderr.txt", "w") as err:
+        t0 = time.perf_counter()
+        proc = subprocess.Popen(args, stdout=out, stderr=err, env={**os.environ, **(env or {})})
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - t0
+    proc.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
+    return proc.returncode, wall, usage.ru_maxrss / 1024
+
+
+def first_line(path):
+    try:
+        lines = [ln.strip() for ln in Path(path).read_text(errors="replace").splitlines()]
+    except OSError:
+        return ""
+    return next((ln for ln in lines if ln), "")
+
+
+def run_member(exe, study, member, ranks=1, jobs=1):
+    """Run one member unless its done marker exists; print and return a status line."""
+    run_dir = study.output / member.name
+    if (run_dir / DONE).is_file():
+        return f"{member.name}: done before, skipped"
+    shutil.rmtree(run_dir, ignore_errors=True)  # a partial or failed earlier attempt
+    run_dir.mkdir(parents=True)
+    # Studies need the observables only: no field output unless the study sets it.
+    overrides = {"output.every": 0, "output.progress": "false", **member.overrides,
+                 "output.directory": str(run_dir)}
+    args = [exe, "run", str(study.scene)]
+    for key, value in overrides.items():
+        args += ["--set", f"{key}={format_value(value)}"]
+    (run_dir / "command.txt").write_text(" ".join(mpi_prefix(ranks, jobs) + args) + "\n")
+    code, wall, peak = run_command(mpi_prefix(ranks, jobs) + args, run_dir,
+                                   env={"OPENBLAS_NUM_THREADS": "1"} if ranks > 1 else None)
+    record = {"exit": code, "wall": wall, "peak_mb": peak, "ranks": ranks}
+    if code == 0:
+        (run_dir / DONE).write_text(json.dumps(record) + "\n")
+        return f"{member.name}: finished in {wall:.1f} s"
+    record["message"] = first_line(run_dir / "stderr.txt")
+    (run_dir / FAILED).write_text(json.dumps(record) + "\n")
+    return f"{member.name}: FAILED (exit {code}) {record['message']}"
+
+
+def collect(study):
+    """Result dicts of all members (see study_report) from their run directories."""
+    results = []
+    for m in study.members:
+        run_dir = study.output / m.name
+        r = {"name": m.name, "eps": m.eps, "params": m.params, "obs": None,
+             "status": "not run", "wall": None, "peak_mb": None}
+        for marker in (DONE, FAILED):
+            if (run_dir / marker).is_file():
+                record = json.loads((run_dir / marker).read_text())
+                r["wall"], r["peak_mb"] = record.get("wall"), record.get("peak_mb")
+                r["status"] = "ok" if marker == DONE else \
+                    f"failed (exit {record['exit']}): {record.get('message', '')}".replace("|", "/")
+                break
+        try:
+            r["obs"] = read_observables(run_dir)
+        except ResultsError:
+            pass
+        results.append(r)
+    return results
+
+
+def report(study):
+    results = collect(study)
+    title = f"Study {study.path.name}: {study.kind} of {os.path.relpath(study.scene, ROOT)}"
+    if study.kind == "ladder":
+        write_convergence_report(study.output, title, results, study.observables)
+    else:
+        write_sweep_report(study.output, title, results, study.sweep_keys, study.end_state)
+    print(f"report: {study.output / 'report.md'}")
+    return results
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0].split("\n")[0],
+        epilog=__doc__.split("\n\n", 1)[1], formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+    run_p = sub.add_parser("run", help="run the members not yet done and write the report")
+    run_p.add_argument("study", help="study file (YAML)")
+    run_p.add_argument("--jobs", type=int, default=1, help="members run at once (default 1)")
+    run_p.add_argument("--mpi", type=int, default=1, help="MPI ranks per member (default 1)")
+    run_p.add_argument("--exe", help="cellphase executable (default: $CELLPHASE_EXE, "
+                                     "else build/cellphase)")
+    rep_p = sub.add_parser("report", help="rewrite the report from the existing results")
+    rep_p.add_argument("study", help="study file (YAML)")
+    a = parser.parse_args(argv)
+    try:
+        study = load_study(a.study)
+        if a.command == "run":
+            if a.jobs < 1 or a.mpi < 1:
+                raise StudyError("--jobs and --mpi must be at least 1")
+            exe = find_executable(a.exe)
+            study.output.mkdir(parents=True, exist_ok=True)
+            print(f"{len(study.members)} members in {study.output}", flush=True)
+            with ThreadPoolExecutor(max_workers=a.jobs) as pool:
+                futures = [pool.submit(run_member, exe, study, m, a.mpi, a.jobs)
+                           for m in study.members]
+                for f in futures:
+                    print(f.result(), flush=True)
+        results = report(study)
+    except StudyError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except ValueError as e:  # e.g. an observable the runs do not write
+        print(f"error: {study.path}: {e}", file=sys.stderr)
+        return 2
+    return 0 if all(r["status"] == "ok" for r in results) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,151 @@
+"""Studies: error norm and ROC on synthetic series, study-file checks, reports, and a tiny
+convergence study run end to end through the real executable."""
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from conftest import EXE, require_exe
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
+from study_file import StudyError, load_study  # noqa: E402
+from study_report import (error_norm, rate_of_convergence, write_convergence_report,  # noqa: E402
+                          write_sweep_report)
+
+STUDY = ROOT / "python" / "study.py"
+AC_SCENE = ROOT / "demos" / "allen-cahn-circle" / "scene.yaml"
+
+
+def synthetic_result(eps, obs, **extra):
+    return {"name": f"eps{eps}", "eps": eps, "params": {}, "obs": obs, "status": "ok",
+            "wall": 1.0 / eps, "peak_mb": 50.0, **extra}
+
+
+def test_error_norm_constant_offset():
+    t = np.linspace(0, 1, 11)
+    # q = 1.1 against q_ref = 1 everywhere: ||e|| = sqrt(n 0.01 / n) = 0.1.
+    assert error_norm(t, np.ones_like(t), t, 1.1 * np.ones_like(t)) == pytest.approx(0.1)
+
+
+def test_error_norm_interpolates_reference_in_time():
+    # A linear reference on a fine time grid is matched exactly at the member's (other) times.
+    ref_t = np.linspace(0, 1, 101)
+    t = np.array([0.0, 0.123, 0.5, 0.77, 1.0])
+    assert error_norm(ref_t, 2 + 3 * ref_t, t, 2 + 3 * t) == pytest.approx(0, abs=1e-14)
+    # A reference known only at t = 0 and 1 is interpolated: at t = 0.5 it is 2, not 0.
+    e = error_norm([0, 1], [1, 3], [0.5], [1.0])
+    assert e == pytest.approx(0.5)  # |2 - 1| / |2|
+
+
+@pytest.mark.parametrize("order", [1, 2, 3])
+def test_roc_of_exact_power_law(order):
+    # q = 1 + c eps^p with the reference at eps = 0: e(eps) = c eps^p / 1 exactly, ROC = p.
+    eps = [0.064, 0.0457, 0.032]
+    e = [0.3 * x ** order for x in eps]
+    for a, b, ea, eb in zip(eps, eps[1:], e, e[1:]):
+        assert rate_of_convergence(ea, eb, a, b) == pytest.approx(order)
+    assert math.isnan(rate_of_convergence(0.0, 1e-3, 0.1, 0.05))
+
+
+def test_convergence_report_on_exact_ladder(tmp_path):
+    # q(t) = 1 + eps^2 t with a reference at eps = 1e-6 (q_ref = 1 to 1e-12): ROC 2.
+    t = np.linspace(0, 1, 21)
+    results = [synthetic_result(eps, {"time": t, "dofs": np.full_like(t, 100 / eps),
+                                      "q": 1 + eps ** 2 * t})
+               for eps in (1e-6, 0.08, 0.04, 0.02)]  # given in any order: sorted by eps
+    write_convergence_report(tmp_path, "synthetic", results, ["q"])
+    text = (tmp_path / "report.md").read_text()
+    rows = [ln for ln in text.splitlines() if ln.startswith("| 0.0")]
+    assert len(rows) == 3 and all("2.00" in r for r in rows[1:]), text
+    assert "reference" in text
+    assert (tmp_path / "error_vs_walltime.png").stat().st_size > 1000
+
+
+def test_sweep_report_on_synthetic_results(tmp_path):
+    t = np.linspace(0, 1, 5)
+    results = []
+    for mobility in (1, 5, 10):
+        for kind in ("taylor", "stabilised"):
+            results.append({"name": f"m{mobility}{kind}", "eps": None, "status": "ok",
+                            "params": {"phase_field.mobility": mobility,
+                                       "numerics.linearisation": kind},
+                            "obs": {"time": t, "circularity": 0.5 + 0.01 * mobility * t},
+                            "wall": 1.0, "peak_mb": 40.0})
+    results[-1].update(status="failed (exit 3): diverged", obs=None)
+    keys = ["phase_field.mobility", "numerics.linearisation"]
+    write_sweep_report(tmp_path, "synthetic sweep", results, keys, ["circularity"])
+    text = (tmp_path / "report.md").read_text()
+    assert "| 5 | taylor | ok | 1 | 4 | 1.0 | 40 | 0.55 |" in text, text
+    assert "failed (exit 3): diverged" in text
+    assert (tmp_path / "end_state.png").stat().st_size > 1000
+
+
+def write_study(tmp_path, text):
+    path = tmp_path / "study.yaml"
+    path.write_text(text.replace("SCENE", str(AC_SCENE)))
+    return path
+
+
+@pytest.mark.parametrize("text, message", [
+    ("scene: SCENE\noutput: o\nsweep: {a: [1]}\nrepeat: 3\n", "unknown key repeat"),
+    ("scene: SCENE\noutput: o\nladder: {epsilon: [0.1, 0.05], rulez: {}}\n", "ladder.rulez"),
+    ("scene: SCENE\noutput: o\nladder: {epsilon: [0.05, 0.1], rules: "
+     "{resolution_times_epsilon: 1, dt_over_epsilon: 0.1}}\n", "must decrease"),
+    ("scene: SCENE\noutput: o\nladder: {epsilon: [0.1, 0.05], rules: "
+     "{resolution_times_epsilon: 1}}\n", "ladder.rules.dt_over_epsilon: required"),
+    ("scene: SCENE\noutput: o\nladder: {epsilon: [0.1, x], rules: {}}\n", "'x' is not a positive"),
+    ("scene: SCENE\noutput: o\nsweep: {a: 3}\n", "sweep.a: expected a non-empty list"),
+    ("scene: SCENE\noutput: o\n", "exactly one of ladder"),
+    ("scene: nowhere.yaml\noutput: o\nsweep: {a: [1]}\n", "nowhere.yaml: no such file"),
+    ("scene: SCENE\noutput: o\nsweep: {a: [1]}\nreport: {end: [x]}\n", "unknown key report.end"),
+])
+def test_study_file_errors_name_the_key(tmp_path, text, message):
+    with pytest.raises(StudyError, match=message.replace("(", r"\(")):
+        load_study(write_study(tmp_path, text))
+
+
+def test_ladder_rules_scale_resolution_and_dt(tmp_path):
+    study = load_study(write_study(tmp_path, (
+        "scene: SCENE\noutput: o\nset: {numerics.end_time: 0.1}\n"
+        "ladder: {epsilon: [0.064, 0.032], rules: "
+        "{resolution_times_epsilon: 0.64, dt_over_epsilon: 0.05}}\n")))
+    coarse, fine = study.members
+    assert coarse.overrides["domain.resolution"] == [10, 10]
+    assert fine.overrides["domain.resolution"] == [20, 20]
+    assert fine.overrides["numerics.dt"] == pytest.approx(0.0016)
+    assert coarse.overrides["numerics.end_time"] == 0.1
+    assert study.output == tmp_path / "o"
+
+
+def test_study_cli_rejects_unknown_key_with_exit_2(tmp_path):
+    path = write_study(tmp_path, "scene: SCENE\noutput: o\nsweep: {a: [1]}\nbogus: 1\n")
+    proc = subprocess.run([sys.executable, str(STUDY), "report", str(path)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert "unknown key bogus" in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_tiny_convergence_study_end_to_end(tmp_path):
+    require_exe()
+    path = write_study(tmp_path, (
+        "scene: SCENE\noutput: out\n"
+        "set: {numerics.end_time: 0.01, numerics.mesh.remesh_every: 0}\n"
+        "ladder: {epsilon: [0.16, 0.113, 0.08], rules: "
+        "{resolution_times_epsilon: 0.48, dt_over_epsilon: 0.05}}\n"
+        "observables: [volume, surface]\n"))
+    env = {**os.environ, "CELLPHASE_EXE": EXE}
+    run = [sys.executable, str(STUDY), "run", str(path), "--jobs", "2"]
+    proc = subprocess.run(run, capture_output=True, text=True, env=env, timeout=60)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert "| 0.08 |" in report and "reference" in report
+    assert report.count("e-0") >= 4, report  # two errors for each of the two coarse members
+    assert (tmp_path / "out" / "error_vs_walltime.png").stat().st_size > 1000
+    # A second run skips the finished members.
+    proc = subprocess.run(run, capture_output=True, text=True, env=env, timeout=60)
+    assert proc.stdout.count("skipped") == 3, proc.stdout
