@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 import matplotlib
+import matplotlib.ticker
 matplotlib.use("Agg")  # reports are written without a display
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -107,6 +108,9 @@ def write_convergence_report(out_dir, title, results, observables):
         if points:
             walls, errs, eps = zip(*points)
             ax.loglog(walls, errs, "o-")
+            # Ticks at the members' wall times: log minor labels overlap on narrow ranges.
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+            ax.set_xticks(walls, [f"{w:.3g}" for w in walls])
             for w, e, x in points:
                 ax.annotate(f"eps={x:.3g}", (w, e), fontsize=7, xytext=(3, 3),
                             textcoords="offset points")

@@ -149,3 +149,26 @@ def test_tiny_convergence_study_end_to_end(tmp_path):
     # A second run skips the finished members.
     proc = subprocess.run(run, capture_output=True, text=True, env=env, timeout=60)
     assert proc.stdout.count("skipped") == 3, proc.stdout
+
+
+def test_hard_case_registry_loads_and_measures():
+    import hard_cases
+    cases = [hard_cases.load_case(p) for p in sorted(hard_cases.REGISTRY.glob("*.yaml"))]
+    assert len(cases) >= 5 and all(c["scene"].is_file() for c in cases)
+    t = np.array([0.0, 0.1, 0.2, 0.3])
+    obs = {"time": t, "phi_min": np.array([-1, -1, -1.2, -1.0]), "phi_max": np.ones(4),
+           "volume": np.array([2.0, 2.0, 2.1, 1.9]), "total_energy": np.array([3, 2, 2.5, 1.0])}
+    m = hard_cases.measures(obs, "total_energy")
+    assert m["max_phi"] == pytest.approx(1.2)
+    assert m["volume_drift"] == pytest.approx(0.05)
+    assert m["energy_decay"].startswith("no (+5.00e-01 at t=0.2")
+    obs["total_energy"] = np.array([3, 2, 1.5, 1.0])
+    assert hard_cases.measures(obs, "total_energy")["energy_decay"] == "yes"
+
+
+def test_hard_case_unknown_key(tmp_path):
+    import hard_cases
+    path = tmp_path / "case.yaml"
+    path.write_text(f"scene: {AC_SCENE}\nsett: {{}}\n")
+    with pytest.raises(StudyError, match="unknown key sett"):
+        hard_cases.load_case(path)
