@@ -1,6 +1,7 @@
 # Functionals written to observables.csv every step (section 5.3 and 3.2.2), on the
 # standalone P2 fields phi and mu.
-from ufl import (Coefficient, FunctionSpace, SpatialCoordinate, dx, grad, inner)
+from ufl import (Coefficient, FunctionSpace, SpatialCoordinate, TestFunction, dx, grad,
+                 inner)
 
 from cellphase_ufl import DIM, P2, QDEG, W, constants, domain, dW
 
@@ -19,10 +20,12 @@ helfrich_mu = mu**2 / (2 * eps) * dx                                           #
 com = [phit * x[i] * dx for i in range(DIM)]                                   # (5.19)
 com_0 = com[0]
 com_1 = com[1]
-# First variation of E_CH at phi in the direction delta: int kappa delta, (3.24)
-delta = Coefficient(V)
-area_variation = (eps * inner(grad(phi), grad(delta)) + dW(phi) * delta / eps) * dxq
-forms = [area_variation, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1]
+# Weights w_i such that sum_i w_i delta_i is the volume int delta (3.10) and the first
+# variation of E_CH at phi, int kappa delta (3.24), of a P2 function delta.
+q = TestFunction(V)
+volume_weights = q * dx
+area_weights = (eps * inner(grad(phi), grad(q)) + dW(phi) * q / eps) * dxq
+forms = [volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1]
 if DIM == 3:
     com_2 = com[2]
     forms.append(com_2)

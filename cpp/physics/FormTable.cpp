@@ -71,7 +71,8 @@ ObservableForms observable_forms(int dim)
   f.cell_volume = form_observables_##D##_cell_volume;                                           \
   f.energy_ch = form_observables_##D##_energy_ch;                                               \
   f.helfrich_mu = form_observables_##D##_helfrich_mu;                                           \
-  f.area_variation = form_observables_##D##_area_variation;                                     \
+  f.volume_weights = form_observables_##D##_volume_weights;                                     \
+  f.area_weights = form_observables_##D##_area_weights;                                         \
   f.com[0] = form_observables_##D##_com_0;                                                      \
   f.com[1] = form_observables_##D##_com_1;                                                      \
   f.p2_space = functionspace_form_observables_##D##_phi_integral;

@@ -30,7 +30,8 @@ struct ObservableForms
   ufcx_form* cell_volume = nullptr;
   ufcx_form* energy_ch = nullptr;
   ufcx_form* helfrich_mu = nullptr;
-  ufcx_form* area_variation = nullptr; ///< int kappa(phi) delta (coefficients phi, delta)
+  ufcx_form* volume_weights = nullptr; ///< int q: volume of a P2 function as a dot product
+  ufcx_form* area_weights = nullptr;   ///< int kappa(phi) q: first variation of E_CH
   std::array<ufcx_form*, 3> com{nullptr, nullptr, nullptr};
   ufcx_space_fn p2_space = nullptr; ///< scalar P2 (coefficient "phi")
 };

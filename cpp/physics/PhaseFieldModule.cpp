@@ -146,12 +146,15 @@ void PhaseFieldModule::bind_forms()
                         nullptr, lam_v_, pf.penalty_volume});
     loads_.push_back({UnitLoad::area, compat::create_form(*forms_.load_a, {W_}, coeffs, constants_),
                       nullptr, lam_a_, pf.penalty_area});
-    delta_ = std::make_shared<Function>(V_);
-    delta_integral_ = compat::create_form(*obs.phi_integral, {}, {{"phi", delta_}}, constants_, mesh);
     // phi^n is the linearisation point of E_CH: bound to the standalone field, which
     // holds phi^n until the step is complete.
-    delta_area_variation_ = compat::create_form(
-        *obs.area_variation, {}, {{"phi", fields_.at("phi")}, {"delta", delta_}}, constants_, mesh);
+    volume_weights_form_ = compat::create_form(*obs.volume_weights, {V_}, {}, constants_);
+    area_weights_form_ = compat::create_form(*obs.area_weights, {V_}, phi_only, constants_);
+    volume_weights_ = std::make_unique<la::Vector<T>>(V_->dofmap()->index_map, 1);
+    area_weights_ = std::make_unique<la::Vector<T>>(V_->dofmap()->index_map, 1);
+    volume_weights_->set(0.0);
+    fem::assemble_vector(volume_weights_->mutable_array(), *volume_weights_form_);
+    volume_weights_->scatter_rev(std::plus<T>());
   }
 }
 
@@ -199,12 +202,19 @@ void PhaseFieldModule::update_multipliers(double dt)
   }
 }
 
-void PhaseFieldModule::extract_phi(const la::Vector<T>& x, Function& phi) const
+double PhaseFieldModule::phi_dot(const la::Vector<T>& weights, const la::Vector<T>& x,
+                                 bool minus_phi_n) const
 {
-  auto in = x.array();
-  auto out = phi.x()->mutable_array();
-  for (std::size_t d = 0; d < to_mixed_[0].size(); ++d)
-    out[d] = in[to_mixed_[0][d]];
+  // Owned dofs only (the weights hold the assembled sums there), then over ranks.
+  auto w = weights.array();
+  auto xs = x.array();
+  auto p = fields_.at("phi")->x()->array();
+  const std::int32_t owned = V_->dofmap()->index_map->size_local();
+  double sum = 0;
+  for (std::int32_t d = 0; d < owned; ++d)
+    sum += w[d] * (xs[to_mixed_[0][d]] - (minus_phi_n ? p[d] : 0.0));
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm_);
+  return sum;
 }
 
 void PhaseFieldModule::apply_constraint_loads()
@@ -226,20 +236,15 @@ void PhaseFieldModule::apply_constraint_loads()
   // phi^{n+1} = phi_0 + sum_j m_j phi_j. Its volume (3.10) is linear in m, its area
   // (3.11) is linearised about phi^n: A = A(phi^n) + dA[phi_0 - phi^n] + sum_j m_j dA[phi_j].
   const std::size_t K = loads_.size();
-  auto phi_n = fields_.at("phi");
+  area_weights_->set(0.0);
+  fem::assemble_vector(area_weights_->mutable_array(), *area_weights_form_);
+  area_weights_->scatter_rev(std::plus<T>());
   std::vector<double> vol(K + 1), darea(K + 1);
   for (std::size_t j = 0; j <= K; ++j)
   {
-    extract_phi(j == 0 ? *x_ : *loads_[j - 1].x, *delta_);
-    vol[j] = integral(delta_integral_);
-    if (j == 0)
-    {
-      auto d = delta_->x()->mutable_array();
-      auto p = phi_n->x()->array();
-      for (std::size_t i = 0; i < d.size(); ++i)
-        d[i] -= p[i];
-    }
-    darea[j] = integral(delta_area_variation_);
+    const auto& x = j == 0 ? *x_ : *loads_[j - 1].x;
+    vol[j] = phi_dot(*volume_weights_, x, false);
+    darea[j] = phi_dot(*area_weights_, x, j == 0);
   }
   darea[0] += integral(energy_ch_);
   // One row per load: multipliers hold g(phi^{n+1}) = target (3.28)-(3.29); penalties are

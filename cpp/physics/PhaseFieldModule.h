@@ -58,8 +58,6 @@ private:
   /// hold the constraints at t^{n+1} (helfrich_lagrange) or with the penalties evaluated
   /// at t^{n+1} (helfrich_penalty, helfrich_hm1), E_CH linearised about phi^n.
   void apply_constraint_loads();
-  /// phi part of a mixed vector into a P2 function
-  void extract_phi(const dolfinx::la::Vector<T>& x, Function& phi) const;
   void gather_state();   ///< standalone fields -> mixed vector u0
   void scatter_state();  ///< mixed solution -> standalone fields
   double integral(const std::shared_ptr<Form>& f) const;
@@ -90,8 +88,12 @@ private:
     bool current = false; ///< x solves the current matrix (the volume load is constant)
   };
   std::vector<UnitLoad> loads_;
-  std::shared_ptr<Function> delta_; ///< phi part of a solution, for the functionals below
-  std::shared_ptr<Form> delta_integral_, delta_area_variation_;
+  /// Volume and linearised area of the phi part of a mixed vector are dot products with
+  /// these weights on V (volume: once per mesh; area: once per step, about phi^n).
+  std::shared_ptr<Form> volume_weights_form_, area_weights_form_;
+  std::unique_ptr<dolfinx::la::Vector<T>> volume_weights_, area_weights_;
+  double phi_dot(const dolfinx::la::Vector<T>& weights, const dolfinx::la::Vector<T>& x,
+                 bool minus_phi_n) const;
   std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
   std::unique_ptr<LinearSolver> solver_;
