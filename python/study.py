@@ -5,14 +5,17 @@
   study.py report STUDY.yaml                     rewrite the report from the existing results
 
 Each member runs in OUTPUT/<member>/ (observables.csv, stdout.txt, stderr.txt). After a
-successful run the runner writes OUTPUT/<member>/done with the measured wall time and peak
-memory; members with that marker are skipped on the next run. The report is OUTPUT/report.md
-with error_vs_walltime.png (ladder) or end_state.png (sweep). See docs/studies.md.
+successful run the runner writes OUTPUT/<member>/done with the measured wall time, peak
+memory and settings; members with that marker and the same settings are skipped. The
+report is OUTPUT/report.md with error_vs_walltime.png (ladder) or end_state.png (sweep).
+See docs/studies.md.
 Exit status: 0 all members finished, 1 some member failed, 2 bad study file or usage.
 """
 import argparse
+import datetime
 import json
 import os
+import platform
 import shutil
 import subprocess
 import sys
@@ -71,22 +74,23 @@ def first_line(path):
 
 
 def run_member(exe, study, member, ranks=1, jobs=1):
-    """Run one member unless its done marker exists; print and return a status line."""
+    """Run one member unless it is done with the same settings; return a status line."""
     run_dir = study.output / member.name
-    if (run_dir / DONE).is_file():
-        return f"{member.name}: done before, skipped"
-    shutil.rmtree(run_dir, ignore_errors=True)  # a partial or failed earlier attempt
-    run_dir.mkdir(parents=True)
     # Studies need the observables only: no field output unless the study sets it.
     overrides = {"output.every": 0, "output.progress": "false", **member.overrides,
                  "output.directory": str(run_dir)}
-    args = [exe, "run", str(study.scene)]
-    for key, value in overrides.items():
-        args += ["--set", f"{key}={format_value(value)}"]
+    settings = [f"{key}={format_value(value)}" for key, value in overrides.items()]
+    if (run_dir / DONE).is_file():
+        # Results of other settings (the study's `set` was edited) are not reused.
+        if json.loads((run_dir / DONE).read_text()).get("settings") == settings:
+            return f"{member.name}: done before, skipped"
+    shutil.rmtree(run_dir, ignore_errors=True)  # a partial, failed or outdated attempt
+    run_dir.mkdir(parents=True)
+    args = [exe, "run", str(study.scene)] + [a for s in settings for a in ("--set", s)]
     (run_dir / "command.txt").write_text(" ".join(mpi_prefix(ranks, jobs) + args) + "\n")
     code, wall, peak = run_command(mpi_prefix(ranks, jobs) + args, run_dir,
                                    env={"OPENBLAS_NUM_THREADS": "1"} if ranks > 1 else None)
-    record = {"exit": code, "wall": wall, "peak_mb": peak, "ranks": ranks}
+    record = {"exit": code, "wall": wall, "peak_mb": peak, "ranks": ranks, "settings": settings}
     if code == 0:
         (run_dir / DONE).write_text(json.dumps(record) + "\n")
         return f"{member.name}: finished in {wall:.1f} s"
@@ -120,10 +124,16 @@ def collect(study):
 def report(study):
     results = collect(study)
     title = f"Study {study.path.name}: {study.kind} of {os.path.relpath(study.scene, ROOT)}"
+    common = ", ".join(f"`{k}={format_value(v)}`" for k, v in study.common.items()) or "none"
+    preamble = (f"Written by `python/study.py` on {datetime.date.today()} on {platform.node()} "
+                f"({os.cpu_count()} cores). Settings of every member: {common}.")
     if study.kind == "ladder":
-        write_convergence_report(study.output, title, results, study.observables)
+        rules = ", ".join(f"{k} {v:g}" for k, v in study.rules.items())
+        preamble += f" Ladder rules: {rules}."
+        write_convergence_report(study.output, title, results, study.observables, preamble)
     else:
-        write_sweep_report(study.output, title, results, study.sweep_keys, study.end_state)
+        write_sweep_report(study.output, title, results, study.sweep_keys, study.end_state,
+                           preamble)
     print(f"report: {study.output / 'report.md'}")
     return results
 

@@ -44,6 +44,8 @@ class Study:
     observables: list         # ladder: series compared against the finest member
     end_state: list           # sweep: quantities reported at the last step
     sweep_keys: list = field(default_factory=list)
+    common: dict = field(default_factory=dict)  # the study's `set`
+    rules: dict = field(default_factory=dict)   # the ladder's rules
 
 
 def format_value(value):
@@ -176,5 +178,6 @@ def load_study(path):
     names = [m.name for m in members]
     if len(set(names)) != len(names):
         raise StudyError(f"{where}two members would share the directory name {names}")
+    rules = data["ladder"]["rules"] if kind == "ladder" else {}
     return Study(path, scene, (path.parent / data["output"]).resolve(), kind, members,
-                 observables, end_state, keys)
+                 observables, end_state, keys, common, rules)

@@ -64,7 +64,7 @@ def convergence_errors(results, observables):
     return table
 
 
-def write_convergence_report(out_dir, title, results, observables):
+def write_convergence_report(out_dir, title, results, observables, preamble=""):
     """report.md (Table 5.2 style, with cost columns) and error_vs_walltime.png."""
     out_dir = Path(out_dir)
     results = sorted(results, key=lambda r: -r["eps"])  # coarsest first, reference last
@@ -76,7 +76,7 @@ def write_convergence_report(out_dir, title, results, observables):
     head = ["eps", "DOFs", "steps", "wall s", "peak MB"]
     for k in observables:
         head += [f"{k} \\|\\|e\\|\\|_2", "ROC"]
-    lines = [f"# {title}", "",
+    lines = [f"# {title}", "", preamble, "",
              "Relative error norm ||e||_2 of each observable's time series against the finest "
              "member (the reference, interpolated linearly in time), and the order of "
              "convergence ROC = log(e_i/e_(i+1)) / log(eps_i/eps_(i+1)) between neighbours. "
@@ -138,12 +138,12 @@ def _axis_value(v):
     return v if isinstance(v, (int, float)) and not isinstance(v, bool) else str(v)
 
 
-def write_sweep_report(out_dir, title, results, keys, quantities):
+def write_sweep_report(out_dir, title, results, keys, quantities, preamble=""):
     """report.md (one row per member) and end_state.png (each quantity against the first
     varied key, one line per combination of the other keys)."""
     out_dir = Path(out_dir)
     head = list(keys) + ["status", "end time", "steps", "wall s", "peak MB"] + list(quantities)
-    lines = [f"# {title}", "",
+    lines = [f"# {title}", "", preamble, "",
              "End-state quantities (last row of observables.csv) of every member.", "",
              "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in results:

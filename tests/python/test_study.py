@@ -149,6 +149,10 @@ def test_tiny_convergence_study_end_to_end(tmp_path):
     # A second run skips the finished members.
     proc = subprocess.run(run, capture_output=True, text=True, env=env, timeout=60)
     assert proc.stdout.count("skipped") == 3, proc.stdout
+    # Other settings for every member: none of the old results is reused.
+    path.write_text(path.read_text().replace("remesh_every: 0", "remesh_every: 1"))
+    proc = subprocess.run(run, capture_output=True, text=True, env=env, timeout=60)
+    assert proc.returncode == 0 and proc.stdout.count("finished") == 3, proc.stdout
 
 
 def test_hard_case_registry_loads_and_measures():
