@@ -176,3 +176,26 @@ def test_hard_case_unknown_key(tmp_path):
     path.write_text(f"scene: {AC_SCENE}\nsett: {{}}\n")
     with pytest.raises(StudyError, match="unknown key sett"):
         hard_cases.load_case(path)
+
+
+def test_failures_are_data(tmp_path):
+    # A member and a hard case the executable rejects: status lines and reports, no traceback.
+    require_exe()
+    env = {**os.environ, "CELLPHASE_EXE": EXE}
+    path = write_study(tmp_path, "scene: SCENE\noutput: out\nset: {numerics.end_time: 0.004}\n"
+                                 "sweep: {numerics.epsilon: [-1, 0.1]}\n")
+    proc = subprocess.run([sys.executable, str(STUDY), "run", str(path)], capture_output=True,
+                          text=True, env=env, timeout=60)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert "| -1 | failed (exit 2): error:" in report and "| 0.1 | ok |" in report, report
+
+    registry = tmp_path / "hard"
+    registry.mkdir()
+    (registry / "bad.yaml").write_text(f"scene: {AC_SCENE}\nset: {{numerics.epsilon: -1}}\n")
+    proc = subprocess.run([sys.executable, str(ROOT / "python" / "hard_cases.py"), "run",
+                           "--registry", str(registry), "--out", str(tmp_path / "hard.md")],
+                          capture_output=True, text=True, env=env, timeout=60)
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
+    assert proc.stdout.startswith("bad: FAILED (exit 2) error:"), proc.stdout
+    assert "FAILED (exit 2)" in (tmp_path / "hard.md").read_text()
