@@ -123,6 +123,7 @@ def collect(study):
 
 def report(study):
     results = collect(study)
+    study.output.mkdir(parents=True, exist_ok=True)  # a report of a study not yet run
     title = f"Study {study.path.name}: {study.kind} of {os.path.relpath(study.scene, ROOT)}"
     common = ", ".join(f"`{k}={format_value(v)}`" for k, v in study.common.items()) or "none"
     preamble = (f"Written by `python/study.py` on {datetime.date.today()} on {platform.node()} "
