@@ -33,7 +33,8 @@ A run writes into output.directory:
   observables.csv   one row per step: time, volume, membrane length/area, energies,
                     centre of mass, circularity, dofs, wall time per part of the step
   fields.xdmf/.h5   the fields every output.every steps (open in ParaView)
-Run in parallel with: mpirun -n 2 cellphase run SCENE
+Run in parallel with: mpirun -n 2 -x OPENBLAS_NUM_THREADS=1 cellphase run SCENE
+(one BLAS thread per rank).
 
 Exit status: 0 success, 2 invalid scene or arguments, 3 numerical failure, 4 other errors
 (for example an output directory that cannot be written).
