@@ -1,5 +1,5 @@
 // cellphase: phase-field simulations of vesicles and cells.
-//   cellphase run SCENE [--set key=value ...]
+//   cellphase run SCENE [--set key=value ...] [--restart RUNDIR]
 //   cellphase check SCENE [--set key=value ...]
 #include "app/Simulation.h"
 #include "scene/Check.h"
@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,9 @@ const char* usage = R"(cellphase - finite-element phase-field simulations of ves
 
 Usage:
   cellphase run SCENE [--set KEY=VALUE ...]    run the experiment described by SCENE
+  cellphase run SCENE --restart RUNDIR [--set KEY=VALUE ...]
+                                               continue the run in RUNDIR from its newest
+                                               valid checkpoint (any number of MPI ranks)
   cellphase check SCENE [--set KEY=VALUE ...]  validate SCENE and print the derived numbers,
                                                mesh resolution and expected size, then exit
   cellphase --help                             this text
@@ -32,18 +36,28 @@ Cells are addressed by index: --set cells.0.radius=0.8.
 A run writes into output.directory:
   observables.csv   one row per step: time, volume, membrane length/area, energies,
                     centre of mass, circularity, dofs, wall time per part of the step
-  fields.xdmf/.h5   the fields every output.every steps (open in ParaView)
+  fields.xdmf/.h5   the fields every output.every steps (open in ParaView); a restarted
+                    run writes fields.restart-<step>.xdmf
+  checkpoints/      checkpoint-<step>.cpk every output.checkpoints.every steps and at the
+                    end (the newest output.checkpoints.keep are kept)
+Ctrl-C or SIGTERM (a queue's time limit) stops the run after the current step with a
+checkpoint and prints the command that continues it; a second Ctrl-C stops at once.
+A run that fails numerically (NaN, diverging solver, phi beyond numerics.limits.phi_bound,
+volume drift beyond numerics.limits.volume_drift) writes its last good state as a
+checkpoint and as fields, and stops.
 Run in parallel with: mpirun -n 2 -x OPENBLAS_NUM_THREADS=1 cellphase run SCENE
 (one BLAS thread per rank).
 
-Exit status: 0 success, 2 invalid scene or arguments, 3 numerical failure, 4 other errors
-(for example an output directory that cannot be written).
+Exit status: 0 success, 2 invalid scene or arguments (or no valid checkpoint to restart
+from), 3 numerical failure, 4 other errors (for example an output directory that cannot be
+written), 5 stopped by SIGINT/SIGTERM after writing a checkpoint.
 )";
 
 struct Arguments
 {
   std::string command, scene;
   std::vector<std::string> overrides;
+  std::string restart_dir; ///< empty: a new run
 };
 
 /// Parse argv; returns false with a message for bad usage.
@@ -69,9 +83,23 @@ bool parse(int argc, char** argv, Arguments& args, std::string& error)
     }
     else if (a.rfind("--set=", 0) == 0)
       args.overrides.push_back(a.substr(6));
+    else if (a == "--restart" || a.rfind("--restart=", 0) == 0)
+    {
+      if (a == "--restart" && (i + 1 >= argc || argv[i + 1][0] == '-'))
+      {
+        error = "--restart needs the run directory to continue, for example --restart output";
+        return false;
+      }
+      args.restart_dir = a == "--restart" ? argv[++i] : a.substr(10);
+      if (args.restart_dir.empty())
+      {
+        error = "--restart needs the run directory to continue, for example --restart output";
+        return false;
+      }
+    }
     else if (a.rfind("-", 0) == 0)
     {
-      error = "unknown option '" + a + "' (allowed: --set KEY=VALUE)";
+      error = "unknown option '" + a + "' (allowed: --set KEY=VALUE, --restart RUNDIR)";
       return false;
     }
     else if (args.scene.empty())
@@ -92,6 +120,11 @@ bool parse(int argc, char** argv, Arguments& args, std::string& error)
     error = "missing scene file after '" + args.command + "'";
     return false;
   }
+  if (!args.restart_dir.empty() && args.command != "run")
+  {
+    error = "--restart goes with 'run', not with '" + args.command + "'";
+    return false;
+  }
   return true;
 }
 
@@ -104,14 +137,14 @@ int launcher_rank()
   return 0;
 }
 
-int run(const cellphase::scene::Scene& scene)
+int run(const cellphase::scene::Scene& scene, bool restart)
 {
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   int status = 0;
   try
   {
-    cellphase::Simulation sim(scene, MPI_COMM_WORLD);
+    cellphase::Simulation sim(scene, MPI_COMM_WORLD, restart);
     sim.run();
   }
   catch (const cellphase::NumericalFailure& e)
@@ -119,6 +152,18 @@ int run(const cellphase::scene::Scene& scene)
     if (rank == 0)
       std::fprintf(stderr, "error: %s\n", e.what());
     status = 3;
+  }
+  catch (const cellphase::Interrupted& e)
+  {
+    if (rank == 0)
+      std::printf("cellphase: %s\n", e.what());
+    status = 5;
+  }
+  catch (const cellphase::RestartError& e)
+  {
+    if (rank == 0)
+      std::fprintf(stderr, "error: %s\n", e.what());
+    status = 2;
   }
   catch (const cellphase::SolverError& e)
   {
@@ -159,6 +204,14 @@ int main(int argc, char** argv)
   cellphase::scene::Scene scene;
   try
   {
+    // A restart continues in its run directory: that is where output goes.
+    if (!args.restart_dir.empty())
+    {
+      args.overrides.push_back("output.directory=" + args.restart_dir);
+      if (!std::filesystem::is_directory(args.restart_dir))
+        throw cellphase::scene::SceneError("cannot restart: '" + args.restart_dir
+                                           + "' is not a directory");
+    }
     scene = cellphase::scene::load_scene(args.scene, args.overrides);
   }
   catch (const cellphase::scene::SceneError& e)
@@ -180,7 +233,7 @@ int main(int argc, char** argv)
   dolfinx::init_logging(argc, argv); // DOLFINx logs warnings only
   PetscInitializeNoArguments();
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr); // errors become messages, not aborts
-  const int status = run(scene);
+  const int status = run(scene, !args.restart_dir.empty());
   PetscFinalize();
   MPI_Finalize();
   return status;

@@ -1,4 +1,6 @@
 #include "app/Simulation.h"
+#include "app/StopSignal.h"
+#include "io/FieldSnapshot.h"
 #include "io/Progress.h"
 #include "mesh/FieldTransfer.h"
 #include "scene/Shapes.h"
@@ -7,6 +9,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 
 namespace cellphase
 {
@@ -18,10 +21,31 @@ int rank_of(MPI_Comm comm)
   MPI_Comm_rank(comm, &r);
   return r;
 }
+
+std::string format(const char* fmt, ...)
+{
+  char buf[1024];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_end(args);
+  return buf;
+}
+
+std::vector<std::string> split_names(const std::string& text)
+{
+  std::vector<std::string> names;
+  std::istringstream in(text);
+  for (std::string name; std::getline(in, name, ',');)
+    names.push_back(name);
+  return names;
+}
 } // namespace
 
-Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm)
-    : scene_(scene), comm_(comm), adaptive_(scene, comm), module_(scene, comm)
+Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart)
+    : scene_(scene), comm_(comm), restart_(restart), adaptive_(scene, comm),
+      module_(scene, comm),
+      checkpoints_(comm, scene.output.directory, scene.output.checkpoints.keep)
 {
 }
 
@@ -36,13 +60,8 @@ void Simulation::log(const char* fmt, ...) const
   std::fflush(stdout);
 }
 
-void Simulation::initialise()
+Simulation::LoopState Simulation::initialise()
 {
-  const auto& out = scene_.output;
-  if (rank_of(comm_) == 0)
-    std::filesystem::create_directories(out.directory);
-  MPI_Barrier(comm_);
-
   // Initial phase field (2.12) from the cells' signed distances, sampled by the mesher
   // directly so that the first mesh is refined where the analytic interface lies.
   scene::InitialPhaseField initial(scene_);
@@ -59,11 +78,108 @@ void Simulation::initialise()
   observables_ = std::make_unique<Observables>(scene_, module_);
   auto v = observables_->evaluate();
   module_.set_targets({v.phi_integral, v.energy_ch});
+  initial_volume_ = v.volume;
+  return {};
+}
 
+// Everything a checkpoint holds is what the loop needs to take the next step exactly as
+// an uninterrupted run would: the mesh (as the cells refined at each level, so that it is
+// rebuilt from the base mesh on any number of ranks), all fields, time, step and the
+// constraint targets. The models have no random numbers and no other history.
+std::string Simulation::save_checkpoint(const LoopState& at)
+{
+  CheckpointData data;
+  data.set("format_version", 1);
+  data.set("step", at.step);
+  data.set("time", at.time);
+  data.set("dt", scene_.numerics.dt);
+  data.set("targets.volume", module_.targets().volume);
+  data.set("targets.area", module_.targets().area);
+  data.set("initial_volume", initial_volume_);
+  data.set("mesh.levels", adaptive_.levels());
+  for (int level = 0; level < adaptive_.levels(); ++level)
+  {
+    auto all = gather_to_root(comm_, adaptive_.history()[level]);
+    data.arrays["mesh.refined_centroids." + std::to_string(level)] = std::move(all);
+  }
+  std::string names;
+  for (const auto& [name, f] : module_.fields())
+  {
+    save_field(*f, "field." + name, data);
+    names += (names.empty() ? "" : ",") + name;
+  }
+  data.texts["fields"] = names;
+  data.texts["model"] = scene::to_string(scene_.phase_field.model);
+  data.texts["scene"] = scene_.resolved_yaml;
+  data.texts["scene.source"] = scene_.source;
+  return checkpoints_.save(data, at.step);
+}
+
+Simulation::LoopState Simulation::restore()
+{
+  std::string path;
+  CheckpointData data;
+  try
+  {
+    data = checkpoints_.load_newest(path);
+  }
+  catch (const CheckpointError& e)
+  {
+    throw RestartError("cannot restart from " + scene_.output.directory + ": " + e.what());
+  }
+  try
+  {
+    if (data.text("model") != scene::to_string(scene_.phase_field.model))
+      throw CheckpointError("it was written by model " + data.text("model") + ", the scene gives "
+                            + scene::to_string(scene_.phase_field.model));
+    if (data.text("scene") != scene_.resolved_yaml)
+      log("cellphase: note: the scene differs from the one %s was written with; the run "
+          "continues with the scene given now\n", path.c_str());
+    std::vector<std::vector<double>> history;
+    for (int level = 0; level < int(data.scalar("mesh.levels")); ++level)
+      history.push_back(data.array("mesh.refined_centroids." + std::to_string(level)));
+    std::shared_ptr<Mesh> mesh;
+    try
+    {
+      mesh = adaptive_.replay(history);
+    }
+    catch (const std::runtime_error& e)
+    {
+      throw CheckpointError(e.what());
+    }
+    auto V = create_p2_space(mesh, scene_.domain.dim);
+    FieldMap fields;
+    for (const auto& name : split_names(data.text("fields")))
+    {
+      auto f = std::make_shared<Function>(V);
+      f->name = name;
+      restore_field(data, "field." + name, *f);
+      fields[name] = f;
+    }
+    module_.attach(V, fields);
+    module_.set_targets({data.scalar("targets.volume"), data.scalar("targets.area")});
+    initial_volume_ = data.scalar("initial_volume");
+    observables_ = std::make_unique<Observables>(scene_, module_);
+    LoopState at{int(data.scalar("step")), data.scalar("time")};
+    log("cellphase: restarting from %s (step %d, t = %g)\n", path.c_str(), at.step, at.time);
+    return at;
+  }
+  catch (const CheckpointError& e)
+  {
+    throw RestartError("cannot restart from " + path + ": " + e.what());
+  }
+}
+
+void Simulation::open_output(const LoopState& start)
+{
+  const auto& out = scene_.output;
   csv_ = std::make_unique<ObservablesCsv>(out.directory + "/observables.csv", scene_.domain.dim,
-                                          comm_);
+                                          comm_, restart_ ? start.step : -1);
+  // A restart writes its fields to a file of its own: the first run's file may end with
+  // steps after the checkpoint, or have been cut short by a kill.
+  fields_file_ = restart_ ? format("fields.restart-%08d.xdmf", start.step) : "fields.xdmf";
   if (out.every > 0)
-    writer_ = std::make_unique<FieldWriter>(comm_, out.directory + "/fields.xdmf", out.fields);
+    writer_ = std::make_unique<FieldWriter>(comm_, out.directory + "/" + fields_file_, out.fields);
   log("cellphase: %s, %dD, model %s (%s), %d refinement levels, %lld dofs\n",
       scene_.source.c_str(), scene_.domain.dim, scene::to_string(scene_.phase_field.model),
       scene::to_string(scene_.numerics.linearisation), adaptive_.levels(),
@@ -84,57 +200,152 @@ double Simulation::remesh(double& volume_change)
   return seconds_since(t0);
 }
 
-void Simulation::record(int step, double time, const StepTimings& timings, double remesh_time,
+void Simulation::keep_good_state(const LoopState& at)
+{
+  good_.at = at;
+  for (const auto& [name, f] : module_.fields())
+  {
+    auto x = f->x()->array();
+    good_.values[name].assign(x.begin(), x.end());
+  }
+}
+
+void Simulation::fail(const LoopState& at, const std::string& what)
+{
+  // Back to the fields at the start of the failed step (same mesh: remeshing happens
+  // before a step), then save them as a checkpoint and as output.
+  for (const auto& [name, f] : module_.fields())
+  {
+    auto x = f->x()->mutable_array();
+    const auto& good = good_.values.at(name);
+    std::copy(good.begin(), good.end(), x.begin());
+  }
+  std::string saved;
+  try
+  {
+    saved = save_checkpoint(good_.at);
+    if (!writer_)
+      writer_ = std::make_unique<FieldWriter>(comm_, scene_.output.directory + "/" + fields_file_,
+                                              scene_.output.fields);
+    writer_->write(module_.fields(), good_.at.time);
+    saved += " and " + scene_.output.directory + "/" + fields_file_;
+  }
+  catch (const std::exception& e)
+  {
+    saved = std::string("nowhere (") + e.what() + ")";
+  }
+  throw NumericalFailure(format(
+      "numerical failure in the phase-field module (%s) at step %d, t = %g: %s; the last good "
+      "state (step %d, t = %g) is in %s",
+      scene::to_string(scene_.phase_field.model), at.step, at.time, what.c_str(),
+      good_.at.step, good_.at.time, saved.c_str()));
+}
+
+void Simulation::check_health(const LoopState& at, const ObservableValues& v)
+{
+  for (const auto& [name, f] : module_.fields())
+  {
+    int bad = 0;
+    for (double x : f->x()->array())
+      bad |= !std::isfinite(x);
+    MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm_);
+    if (bad)
+      fail(at, "field " + name + " is not finite (NaN or Inf)");
+  }
+  const auto& limits = scene_.numerics.limits;
+  const double phi_abs = std::max(-v.phi_min, v.phi_max);
+  if (phi_abs > limits.phi_bound)
+    fail(at, format("field phi reaches %.4g, beyond the bound +-%g (numerics.limits.phi_bound); "
+                    "the time step may be too large",
+                    v.phi_max > -v.phi_min ? v.phi_max : v.phi_min, limits.phi_bound));
+  if (limits.volume_drift && initial_volume_ != 0)
+  {
+    const double drift = std::abs(v.volume - initial_volume_) / std::abs(initial_volume_);
+    if (drift > *limits.volume_drift)
+      fail(at, format("the cell volume drifted by %.3g (relative) from %.6g to %.6g, beyond "
+                      "numerics.limits.volume_drift = %g",
+                      drift, initial_volume_, v.volume, *limits.volume_drift));
+  }
+}
+
+void Simulation::record(const LoopState& at, const StepTimings& timings, double remesh_time,
                         double volume_change)
 {
   StepRecord r;
-  r.step = step;
-  r.time = time;
+  r.step = at.step;
+  r.time = at.time;
   r.values = observables_->evaluate();
+  check_health(at, r.values);
   r.dofs = module_.num_dofs();
   r.lam_v = module_.multipliers()[0];
   r.lam_a = module_.multipliers()[1];
   r.timings = timings;
   r.remesh_time = remesh_time;
   r.remesh_volume_change = volume_change;
-  if (!std::isfinite(r.values.phi_min) || !std::isfinite(r.values.total_energy))
-  {
-    char msg[256];
-    std::snprintf(msg, sizeof msg,
-                  "numerical failure in the phase-field module (%s): phi is not finite at "
-                  "step %d, t = %g; the last good fields are in %s",
-                  scene::to_string(scene_.phase_field.model), step, time,
-                  scene_.output.directory.c_str());
-    throw NumericalFailure(msg);
-  }
   auto t0 = Clock::now();
-  if (writer_ && step % scene_.output.every == 0)
-    writer_->write(module_.fields(), time);
+  if (writer_ && at.step % scene_.output.every == 0)
+    writer_->write(module_.fields(), at.time);
   r.output_time = seconds_since(t0);
   csv_->write(r);
 }
 
 void Simulation::run()
 {
-  initialise();
+  if (rank_of(comm_) == 0)
+    std::filesystem::create_directories(scene_.output.directory);
+  MPI_Barrier(comm_);
+  stop_signal::install();
+  LoopState at = restart_ ? restore() : initialise();
+  open_output(at);
+  keep_good_state(at);
+  if (!restart_)
+    record(at, {}, 0, 0);
+
   const auto& nu = scene_.numerics;
   const int steps = int(std::ceil(nu.end_time / nu.dt - 1e-9));
-  Progress progress(comm_, nu.end_time, scene_.output.progress);
-  record(0, 0.0, {}, 0, 0);
-  double time = 0;
-  for (int n = 1; n <= steps; ++n)
+  const int every = scene_.output.checkpoints.every;
+  Progress progress(comm_, at.time, nu.end_time, scene_.output.progress);
+  while (at.step < steps)
   {
+    const int n = at.step + 1;
     double remesh_time = 0, volume_change = 0;
     if (nu.mesh.remesh_every > 0 && (n - 1) > 0 && (n - 1) % nu.mesh.remesh_every == 0)
       remesh_time = remesh(volume_change);
-    const double dt = std::min(nu.dt, nu.end_time - time);
-    auto timings = module_.step(dt);
-    time = n == steps ? nu.end_time : time + dt;
-    record(n, time, timings, remesh_time, volume_change);
-    progress.update(n, time);
+    keep_good_state(at);
+    const double dt = std::min(nu.dt, nu.end_time - at.time);
+    StepTimings timings;
+    try
+    {
+      timings = module_.step(dt);
+    }
+    catch (const SolverError& e)
+    {
+      fail({n, at.time + dt}, e.what());
+    }
+    at = {n, n == steps ? nu.end_time : at.time + dt};
+    record(at, timings, remesh_time, volume_change);
+    progress.update(n, at.time);
+    std::string checkpoint;
+    if (n == steps || (every > 0 && n % every == 0))
+      checkpoint = save_checkpoint(at);
+    if (n < steps && stop_signal::requested(comm_))
+    {
+      if (checkpoint.empty())
+        checkpoint = save_checkpoint(at);
+      std::string command = "cellphase run " + scene_.source;
+      for (const auto& o : scene_.overrides)
+        if (o.rfind("output.directory=", 0) != 0)
+          command += " --set " + o;
+      command += " --restart " + scene_.output.directory;
+      throw Interrupted(format(
+          "stopped by %s after step %d (t = %g); checkpoint written to %s. Continue with:\n  %s",
+          *stop_signal::name() ? stop_signal::name() : "a signal on another rank", n, at.time,
+          checkpoint.c_str(), command.c_str()));
+    }
   }
-  progress.finish(steps, time);
+  progress.finish(steps, at.time);
   log("  %d factorisations; observables in %s/observables.csv%s\n", module_.factorisations(),
-      scene_.output.directory.c_str(), writer_ ? ", fields in fields.xdmf" : "");
+      scene_.output.directory.c_str(),
+      writer_ ? (", fields in " + fields_file_).c_str() : "");
 }
 } // namespace cellphase

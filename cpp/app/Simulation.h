@@ -1,18 +1,36 @@
-// The time loop of one scene: initial mesh and fields, then step, remesh, observe, write.
+// The time loop of one scene: initial mesh and fields (or those of a checkpoint), then
+// step, check, remesh, observe, write, checkpoint.
 #pragma once
+#include "app/CheckpointStore.h"
 #include "io/FieldWriter.h"
 #include "io/ObservablesCsv.h"
 #include "mesh/AdaptiveMesh.h"
 #include "physics/Observables.h"
 #include "physics/PhaseFieldModule.h"
 #include "scene/Scene.h"
+#include <map>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 namespace cellphase
 {
-/// A run that failed numerically (non-finite field); the message names field, step and time.
+/// A run that failed numerically; the message names module, field, step and time and
+/// where the last good state was written.
 struct NumericalFailure : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// A run stopped by SIGINT/SIGTERM after writing a checkpoint; the message says how to
+/// continue.
+struct Interrupted : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// A restart that cannot start (no valid checkpoint, or one that does not fit the scene).
+struct RestartError : std::runtime_error
 {
   using std::runtime_error::runtime_error;
 };
@@ -20,23 +38,51 @@ struct NumericalFailure : std::runtime_error
 class Simulation
 {
 public:
-  Simulation(const scene::Scene& scene, MPI_Comm comm);
-  /// Run to the scene's end time; throws NumericalFailure or SolverError.
+  /// With restart == true the run continues from the newest valid checkpoint in the
+  /// scene's output directory.
+  Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart = false);
+  /// Run to the scene's end time; throws NumericalFailure, Interrupted or RestartError.
   void run();
 
 private:
-  void initialise();
+  /// Where the loop stands: the state after `step` steps.
+  struct LoopState
+  {
+    int step = 0;
+    double time = 0;
+  };
+  /// Copies of the field values at the start of the current step.
+  struct GoodState
+  {
+    LoopState at;
+    std::map<std::string, std::vector<double>> values;
+  };
+
+  LoopState initialise();
+  LoopState restore();
+  void open_output(const LoopState& start);
   double remesh(double& volume_change);
-  void record(int step, double time, const StepTimings& timings, double remesh_time,
+  void record(const LoopState& at, const StepTimings& timings, double remesh_time,
               double volume_change);
+  /// Throws NumericalFailure (after saving the last good state) if a field is not finite,
+  /// phi leaves its bound or the volume drifts beyond the scene's limit.
+  void check_health(const LoopState& at, const ObservableValues& v);
+  [[noreturn]] void fail(const LoopState& at, const std::string& what);
+  std::string save_checkpoint(const LoopState& at);
+  void keep_good_state(const LoopState& at);
   void log(const char* fmt, ...) const;
 
   const scene::Scene& scene_;
   MPI_Comm comm_;
+  bool restart_;
   AdaptiveMesh adaptive_;
   PhaseFieldModule module_;
+  CheckpointStore checkpoints_;
   std::unique_ptr<Observables> observables_;
   std::unique_ptr<ObservablesCsv> csv_;
   std::unique_ptr<FieldWriter> writer_;
+  std::string fields_file_;
+  double initial_volume_ = 0;
+  GoodState good_;
 };
 } // namespace cellphase

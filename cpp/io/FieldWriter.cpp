@@ -12,6 +12,10 @@ FieldWriter::FieldWriter(MPI_Comm comm, const std::string& path, std::vector<std
 
 void FieldWriter::write(const FieldMap& fields, double time)
 {
+  // A failed run writes its last good state, which may be the one written last.
+  if (meshes_written_ > 0 && time == last_time_ && fields.at("phi")->function_space()->mesh() == source_mesh_)
+    return;
+  last_time_ = time;
   auto mesh = fields.at("phi")->function_space()->mesh();
   if (mesh != source_mesh_)
   {

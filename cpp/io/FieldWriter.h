@@ -15,6 +15,7 @@ class FieldWriter
 {
 public:
   FieldWriter(MPI_Comm comm, const std::string& path, std::vector<std::string> fields);
+  /// Append the fields at `time`; a second write of the same time on the same mesh is skipped.
   void write(const FieldMap& fields, double time);
 
 private:
@@ -24,5 +25,6 @@ private:
   std::shared_ptr<Space> p1_;                ///< P1 on its uniform refinement
   std::string mesh_xpath_;
   int meshes_written_ = 0;
+  double last_time_ = 0;
 };
 } // namespace cellphase

@@ -1,21 +1,57 @@
 #include "io/ObservablesCsv.h"
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
+#include <string>
 
 namespace cellphase
 {
-ObservablesCsv::ObservablesCsv(const std::string& path, int dim, MPI_Comm comm) : dim_(dim)
+namespace
+{
+const char* header = "time,step,volume,surface,helfrich_energy,total_energy,energy_ch,"
+                     "center_x,center_y,center_z,circularity,phi_min,phi_max,lambda_volume,"
+                     "lambda_area,dofs,remesh_volume_change,wall_assembly,wall_factorise,"
+                     "wall_solve,wall_remesh,wall_output\n";
+
+/// Rows of an existing file up to `step` (complete lines only: a killed run may have left
+/// half a row), written back atomically. Returns false if there is no such file.
+bool cut_back(const std::string& path, int step)
+{
+  std::ifstream in(path);
+  if (!in)
+    return false;
+  std::string line, kept;
+  std::getline(in, line);
+  kept = line + "\n";
+  while (std::getline(in, line) && !in.eof())
+  {
+    const auto comma = line.find(',');
+    if (comma == std::string::npos || std::atoi(line.c_str() + comma + 1) > step)
+      break;
+    kept += line + "\n";
+  }
+  const std::string tmp = path + ".tmp";
+  std::ofstream(tmp) << kept;
+  std::filesystem::rename(tmp, path);
+  return true;
+}
+} // namespace
+
+ObservablesCsv::ObservablesCsv(const std::string& path, int dim, MPI_Comm comm,
+                               int resume_after_step)
+    : dim_(dim)
 {
   int rank;
   MPI_Comm_rank(comm, &rank);
   if (rank != 0)
     return;
-  file_ = std::fopen(path.c_str(), "w");
+  const bool resume = resume_after_step >= 0 && cut_back(path, resume_after_step);
+  file_ = std::fopen(path.c_str(), resume ? "a" : "w");
   if (!file_)
     throw std::runtime_error("cannot write '" + path + "'");
-  std::fprintf(file_, "time,step,volume,surface,helfrich_energy,total_energy,energy_ch,"
-                      "center_x,center_y,center_z,circularity,phi_min,phi_max,lambda_volume,"
-                      "lambda_area,dofs,remesh_volume_change,wall_assembly,wall_factorise,"
-                      "wall_solve,wall_remesh,wall_output\n");
+  if (!resume)
+    std::fputs(header, file_);
 }
 
 ObservablesCsv::~ObservablesCsv()

@@ -22,7 +22,9 @@ struct StepRecord
 class ObservablesCsv
 {
 public:
-  ObservablesCsv(const std::string& path, int dim, MPI_Comm comm);
+  /// A new file; or, with resume_after_step >= 0 (a restart), the existing file cut back
+  /// to the rows up to that step and continued.
+  ObservablesCsv(const std::string& path, int dim, MPI_Comm comm, int resume_after_step = -1);
   ~ObservablesCsv();
   void write(const StepRecord& r);
 

@@ -17,8 +17,8 @@ void format_duration(double s, char* buf, std::size_t n)
 }
 } // namespace
 
-Progress::Progress(MPI_Comm comm, double end_time, bool enabled)
-    : end_time_(end_time), start_(Clock::now()), last_(start_)
+Progress::Progress(MPI_Comm comm, double start_time, double end_time, bool enabled)
+    : start_time_(start_time), end_time_(end_time), start_(Clock::now()), last_(start_)
 {
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -31,12 +31,13 @@ void Progress::update(int step, double time)
     return;
   last_ = Clock::now();
   const double elapsed = seconds_since(start_);
-  const double fraction = time / end_time_;
+  // The rate is that of this run, which may have started from a checkpoint.
+  const double done = (time - start_time_) / (end_time_ - start_time_);
   char el[32], rem[32];
   format_duration(elapsed, el, sizeof el);
-  format_duration(fraction > 0 ? elapsed * (1 - fraction) / fraction : 0, rem, sizeof rem);
+  format_duration(done > 0 ? elapsed * (1 - done) / done : 0, rem, sizeof rem);
   std::printf("  step %6d  t = %-10.5g %5.1f%%  elapsed %s, about %s left\n", step, time,
-              100 * fraction, el, rem);
+              100 * time / end_time_, el, rem);
   std::fflush(stdout);
 }
 

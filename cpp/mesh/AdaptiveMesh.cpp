@@ -1,6 +1,8 @@
 #include "mesh/AdaptiveMesh.h"
+#include "mesh/PointLookup.h"
 #include "scene/Resolution.h"
 #include <cmath>
+#include <stdexcept>
 
 namespace cellphase
 {
@@ -12,12 +14,68 @@ AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, MPI_Comm comm)
 {
 }
 
-std::shared_ptr<Mesh> AdaptiveMesh::build(const PointEvaluator& phi) const
+namespace
+{
+std::array<double, 3> centroid(const Mesh& mesh, std::int32_t cell)
+{
+  const auto v = compat::cell_vertex_coordinates(mesh, cell);
+  const std::size_t nv = v.size() / 3;
+  std::array<double, 3> c{0, 0, 0};
+  for (std::size_t i = 0; i < nv; ++i)
+    for (int d = 0; d < 3; ++d)
+      c[d] += v[3 * i + d] / double(nv);
+  return c;
+}
+} // namespace
+
+std::shared_ptr<Mesh> AdaptiveMesh::build(const PointEvaluator& phi)
 {
   auto mesh = base_;
+  history_.assign(levels_, {});
   double h = h_base_;
   for (int level = 0; level < levels_; ++level, h /= 2)
-    mesh = compat::refine_cells(*mesh, mark(*mesh, phi, h));
+  {
+    const auto marked = mark(*mesh, phi, h);
+    for (std::int32_t c : marked)
+      for (double x : centroid(*mesh, c))
+        history_[level].push_back(x);
+    mesh = compat::refine_cells(*mesh, marked);
+  }
+  return mesh;
+}
+
+std::shared_ptr<Mesh> AdaptiveMesh::replay(const std::vector<std::vector<double>>& history)
+{
+  if (int(history.size()) != levels_)
+    throw std::runtime_error("the checkpoint's mesh has " + std::to_string(history.size())
+                             + " refinement levels, the scene gives "
+                             + std::to_string(levels_));
+  auto mesh = base_;
+  history_.assign(levels_, {});
+  double h = h_base_;
+  for (int level = 0; level < levels_; ++level, h /= 2)
+  {
+    // Centroids of distinct cells of this level are at least ~h/6 apart.
+    PointLookup refined(history[level], 1e-6 * h);
+    std::vector<std::int32_t> marked;
+    for (std::int32_t c = 0; c < compat::num_owned_cells(*mesh); ++c)
+    {
+      const auto x = centroid(*mesh, c);
+      if (refined.find(x.data()) >= 0)
+      {
+        marked.push_back(c);
+        history_[level].insert(history_[level].end(), x.begin(), x.end());
+      }
+    }
+    std::int64_t found = marked.size(), stored = history[level].size() / 3;
+    MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPI_INT64_T, MPI_SUM, mesh->comm());
+    if (found != stored)
+      throw std::runtime_error("the checkpoint's mesh does not fit the scene's base mesh: "
+                               + std::to_string(stored) + " cells refined at level "
+                               + std::to_string(level) + ", " + std::to_string(found)
+                               + " of them found");
+    mesh = compat::refine_cells(*mesh, marked);
+  }
   return mesh;
 }
 

@@ -12,7 +12,14 @@ public:
   AdaptiveMesh(const scene::Scene& scene, MPI_Comm comm);
 
   /// The base mesh refined `levels()` times wherever |phi| < threshold somewhere in a cell.
-  std::shared_ptr<Mesh> build(const PointEvaluator& phi) const;
+  /// Records which cells it refined (see history()).
+  std::shared_ptr<Mesh> build(const PointEvaluator& phi);
+  /// The mesh of an earlier build() again, from its history (all ranks' centroids):
+  /// the same cells whatever the number of ranks. Throws std::runtime_error if the
+  /// history does not fit this base mesh.
+  std::shared_ptr<Mesh> replay(const std::vector<std::vector<double>>& history);
+  /// Centroids (rows of 3) of the local cells refined at each level by the last build.
+  const std::vector<std::vector<double>>& history() const { return history_; }
   int levels() const { return levels_; }
   std::shared_ptr<Mesh> base() const { return base_; }
 
@@ -24,5 +31,6 @@ private:
   double h_base_;
   double threshold_;
   double band_; ///< width of the band |phi| < threshold
+  std::vector<std::vector<double>> history_;
 };
 } // namespace cellphase

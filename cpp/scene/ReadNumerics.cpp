@@ -16,6 +16,17 @@ void read_mesh(const Section& m, Mesh& mesh)
   mesh.max_levels = m.integer("max_levels", mesh.max_levels, closed(0, 20));
 }
 
+void read_limits(const Section& l, Model model, Limits& limits)
+{
+  l.allow_only({"phi_bound", "volume_drift"});
+  // phi stays in [-1, 1] up to small overshoots; 1 itself would stop sound runs.
+  limits.phi_bound = l.number("phi_bound", limits.phi_bound, open(1, 1e300));
+  if (l.has("volume_drift"))
+    limits.volume_drift = l.number("volume_drift", positive());
+  else if (model != Model::allen_cahn) // every other model conserves the volume
+    limits.volume_drift = 0.01;
+}
+
 /// PETSc options pass through as text; only their shape is checked here.
 void read_petsc(const Section& p, std::map<std::string, std::string>& out)
 {
@@ -41,7 +52,8 @@ void read_numerics(const Section& top, Scene& s)
     top.fail("numerics", "missing; every scene needs numerics.epsilon, numerics.dt and "
                          "numerics.end_time");
   const Section n = top.section("numerics");
-  n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "petsc"});
+  n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "limits",
+                "petsc"});
   Numerics& num = s.numerics;
   num.epsilon = n.number("epsilon", positive());
   num.dt = n.number("dt", positive());
@@ -59,6 +71,7 @@ void read_numerics(const Section& top, Scene& s)
       {{"taylor", Linearisation::taylor}, {"stabilised", Linearisation::stabilised}});
   num.stabilisation = n.number("stabilisation", num.stabilisation, non_negative());
   read_mesh(n.section("mesh"), num.mesh);
+  read_limits(n.section("limits"), s.phase_field.model, num.limits);
   read_petsc(n.section("petsc"), num.petsc);
 }
 

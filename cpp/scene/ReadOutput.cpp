@@ -8,13 +8,17 @@ using namespace yaml;
 void read_output(const Section& top, Scene& s)
 {
   const Section o = top.section("output");
-  o.allow_only({"directory", "every", "fields", "progress"});
+  o.allow_only({"directory", "every", "fields", "progress", "checkpoints"});
   Output& out = s.output;
   out.directory = o.string("directory", out.directory);
   if (out.directory.empty())
     o.fail("directory", "is empty; give a directory name such as output");
   out.every = o.integer("every", out.every, non_negative());
   out.progress = o.boolean("progress", out.progress);
+  const Section c = o.section("checkpoints");
+  c.allow_only({"every", "keep"});
+  out.checkpoints.every = c.integer("every", out.checkpoints.every, non_negative());
+  out.checkpoints.keep = c.integer("keep", out.checkpoints.keep, closed(1, 1000));
   if (!o.has("fields"))
     return;
 

@@ -89,6 +89,13 @@ struct Mesh
   int max_levels = 8;                ///< safety cap on refinement levels
 };
 
+/// Bounds beyond which a run counts as failed numerically and stops (section "limits").
+struct Limits
+{
+  double phi_bound = 2.0;              ///< stop when |phi| exceeds this anywhere
+  std::optional<double> volume_drift;  ///< stop when |V - V0| / V0 exceeds this
+};
+
 struct Numerics
 {
   double epsilon = 0.03;
@@ -97,7 +104,14 @@ struct Numerics
   Linearisation linearisation = Linearisation::taylor;
   double stabilisation = 2.0;        ///< S of the stabilised scheme
   Mesh mesh;
+  Limits limits;
   std::map<std::string, std::string> petsc; ///< options without the leading '-' and prefix
+};
+
+struct Checkpoints
+{
+  int every = 100;                   ///< steps between checkpoints (also one at the end); 0 = only at the end
+  int keep = 2;                      ///< newest checkpoints kept
 };
 
 struct Output
@@ -106,11 +120,14 @@ struct Output
   int every = 10;                    ///< steps between field writes; 0 = never
   std::vector<std::string> fields{"phi"};
   bool progress = true;
+  Checkpoints checkpoints;
 };
 
 struct Scene
 {
   std::string source;                ///< file the scene came from
+  std::vector<std::string> overrides; ///< the --set KEY=VALUE options, as given
+  std::string resolved_yaml;         ///< the scene's YAML after --set overrides (for checkpoints)
   Domain domain;
   PhiBoundary phi_boundary = PhiBoundary::dirichlet;
   std::vector<Cell> cells;

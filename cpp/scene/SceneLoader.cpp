@@ -58,6 +58,8 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
                     "numerics", "output"});
     Scene s;
     s.source = source;
+    s.overrides = overrides;
+    s.resolved_yaml = YAML::Dump(root);
     read_domain(top, s);
     read_phase_field(top, s);
     read_boundary(top, s);

@@ -1,0 +1,42 @@
+#include "app/StopSignal.h"
+#include <csignal>
+
+namespace cellphase::stop_signal
+{
+namespace
+{
+volatile std::sig_atomic_t received = 0;
+
+extern "C" void on_signal(int sig)
+{
+  received = sig;
+  std::signal(sig, SIG_DFL); // a second Ctrl-C ends the process immediately
+}
+} // namespace
+
+void install()
+{
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+}
+
+bool requested(MPI_Comm comm)
+{
+  int local = received != 0, any = 0;
+  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any != 0;
+}
+
+const char* name()
+{
+  switch (received)
+  {
+  case SIGINT:
+    return "SIGINT";
+  case SIGTERM:
+    return "SIGTERM";
+  default:
+    return received ? "a signal" : "";
+  }
+}
+} // namespace cellphase::stop_signal
