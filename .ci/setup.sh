@@ -8,6 +8,7 @@ packages=(
   cmake g++ make pkg-config
   libdolfinx-dev python3-ffcx          # DOLFINx 0.5 (PETSc with MUMPS, Open MPI, HDF5), FFCx
   libyaml-cpp-dev libmuparser-dev      # scene files, signed-distance expressions
+  libpugixml-dev                       # the XDMF index of the field output
   libgtest-dev                         # C++ tests
   python3-pytest python3-yaml python3-numpy python3-matplotlib python3-h5py  # tests, plots
   libopenblas0-pthread                 # optimised BLAS for MUMPS (see benchmarks/)

@@ -175,15 +175,20 @@ void Simulation::open_output(const LoopState& start)
   const auto& out = scene_.output;
   csv_ = std::make_unique<ObservablesCsv>(out.directory + "/observables.csv", scene_.domain.dim,
                                           comm_, restart_ ? start.step : -1);
-  // A restart writes its fields to a file of its own: the first run's file may end with
-  // steps after the checkpoint, or have been cut short by a kill.
-  fields_file_ = restart_ ? format("fields.restart-%08d.xdmf", start.step) : "fields.xdmf";
   if (out.every > 0)
-    writer_ = std::make_unique<FieldWriter>(comm_, out.directory + "/" + fields_file_, out.fields);
+    writer_ = make_writer(start);
   log("cellphase: %s, %dD, model %s (%s), %d refinement levels, %lld dofs\n",
       scene_.source.c_str(), scene_.domain.dim, scene::to_string(scene_.phase_field.model),
       scene::to_string(scene_.numerics.linearisation), adaptive_.levels(),
       (long long)module_.num_dofs());
+}
+
+std::unique_ptr<FieldWriter> Simulation::make_writer(const LoopState& start) const
+{
+  // A restart continues the index of the interrupted run, cut back to the checkpoint.
+  return std::make_unique<FieldWriter>(
+      comm_, scene_.output.directory, scene_.output.fields,
+      restart_ ? std::optional<double>(start.time) : std::nullopt);
 }
 
 double Simulation::remesh(double& volume_change)
@@ -225,10 +230,9 @@ void Simulation::fail(const LoopState& at, const std::string& what)
   {
     saved = save_checkpoint(good_.at);
     if (!writer_)
-      writer_ = std::make_unique<FieldWriter>(comm_, scene_.output.directory + "/" + fields_file_,
-                                              scene_.output.fields);
-    writer_->write(module_.fields(), good_.at.time);
-    saved += " and " + scene_.output.directory + "/" + fields_file_;
+      writer_ = make_writer(good_.at);
+    writer_->write(module_.fields(), good_.at.time, good_.at.step);
+    saved += " and " + writer_->index_path();
   }
   catch (const std::exception& e)
   {
@@ -283,8 +287,8 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
   r.remesh_time = remesh_time;
   r.remesh_volume_change = volume_change;
   auto t0 = Clock::now();
-  if (writer_ && at.step % scene_.output.every == 0)
-    writer_->write(module_.fields(), at.time);
+  if (writer_ && (at.step % scene_.output.every == 0 || at.step == last_step_))
+    writer_->write(module_.fields(), at.time, at.step);
   r.output_time = seconds_since(t0);
   csv_->write(r);
 }
@@ -295,14 +299,18 @@ void Simulation::run()
     std::filesystem::create_directories(scene_.output.directory);
   MPI_Barrier(comm_);
   stop_signal::install();
+  last_step_ = int(std::ceil(scene_.numerics.end_time / scene_.numerics.dt - 1e-9));
   LoopState at = restart_ ? restore() : initialise();
   open_output(at);
   keep_good_state(at);
   if (!restart_)
+  {
     record(at, {}, 0, 0);
+    save_checkpoint(at); // so that a run killed at any later moment can be restarted
+  }
 
   const auto& nu = scene_.numerics;
-  const int steps = int(std::ceil(nu.end_time / nu.dt - 1e-9));
+  const int steps = last_step_;
   const int every = scene_.output.checkpoints.every;
   Progress progress(comm_, at.time, nu.end_time, scene_.output.progress);
   while (at.step < steps)
@@ -346,6 +354,6 @@ void Simulation::run()
   progress.finish(steps, at.time);
   log("  %d factorisations; observables in %s/observables.csv%s\n", module_.factorisations(),
       scene_.output.directory.c_str(),
-      writer_ ? (", fields in " + fields_file_).c_str() : "");
+      writer_ ? ", fields in fields.xdmf" : "");
 }
 } // namespace cellphase

@@ -61,6 +61,7 @@ private:
   LoopState initialise();
   LoopState restore();
   void open_output(const LoopState& start);
+  std::unique_ptr<FieldWriter> make_writer(const LoopState& start) const;
   double remesh(double& volume_change);
   void record(const LoopState& at, const StepTimings& timings, double remesh_time,
               double volume_change);
@@ -81,8 +82,8 @@ private:
   std::unique_ptr<Observables> observables_;
   std::unique_ptr<ObservablesCsv> csv_;
   std::unique_ptr<FieldWriter> writer_;
-  std::string fields_file_;
   double initial_volume_ = 0;
+  int last_step_ = 0;
   GoodState good_;
 };
 } // namespace cellphase
