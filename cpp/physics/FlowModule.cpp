@@ -217,6 +217,14 @@ void FlowModule::bind_forms()
 
 bool FlowModule::matrix_outdated(double dt) const
 {
+  // Decided together: a rank whose part of phi changed makes all ranks refactorise.
+  int outdated = local_matrix_outdated(dt) ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &outdated, 1, MPI_INT, MPI_MAX, comm_);
+  return outdated != 0;
+}
+
+bool FlowModule::local_matrix_outdated(double dt) const
+{
   if (!factorised_)
     return true;
   // Which inputs enter the matrix of forms/flow.py for these parameters.

@@ -96,6 +96,7 @@ private:
   void build_bcs();
   void bind_forms();
   bool matrix_outdated(double dt) const;
+  bool local_matrix_outdated(double dt) const;
   void remember_matrix_inputs(double dt);
   void store_solution();
 
