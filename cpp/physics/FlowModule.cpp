@@ -1,6 +1,7 @@
 #include "physics/FlowModule.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
+#include <dolfinx/common/log.h>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -266,6 +267,7 @@ FlowTimings FlowModule::step(double dt)
     t.factorise = solver_->set_operator(A_->mat());
     ++factorisations_;
     remember_matrix_inputs(dt);
+    LOG(INFO) << "flow: factorisation " << factorisations_ << " (" << t.factorise << " s)";
   }
   auto t1 = Clock::now();
   solver_->solve(*b_, *x_, "the flow");

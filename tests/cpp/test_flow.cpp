@@ -2,7 +2,8 @@
 // * manufactured solutions with variable viscosity (and density) converge at the
 //   Taylor-Hood rates: velocity L2 order 3, pressure L2 order 2;
 // * Poiseuille and Couette flows lie in P2 x P1 and are reproduced to round-off;
-// * the factorisation is reused while the matrix cannot have changed.
+// * the factorisation is reused while the matrix cannot have changed;
+// * energy decay, the membrane force input and Laplace's law for the capillary force.
 #include "compat/Dolfinx.h"
 #include "mms_flow.h"
 #include "mpi_main.h"
@@ -338,4 +339,87 @@ TEST(FlowReuse, VariableViscosityRefactorisesOnlyWhenPhiChanges)
   phi->x()->mutable_array()[0] += 0.01;
   flow.step(0.1);
   EXPECT_EQ(flow.factorisations(), 2);
+}
+
+// ---- physics ----
+
+TEST(FlowPhysics, KineticEnergyDecaysWithoutForcing)
+{
+  // Navier-Stokes with no force and resting walls: with the Temam term the linearised
+  // convection does no work, so E_kin (2.54) must fall every step (energy law (2.61)).
+  FlowParameters p;
+  p.Re = 100;
+  p.walls = closed_box({});
+  FlowModule flow(p, MPI_COMM_WORLD);
+  flow.attach(box_mesh({1, 1, 0}, {8, 8, 0}));
+  compat::interpolate_vector(*flow.velocity(), [](double x, double y, double) {
+    const double sx = std::sin(pi * x), sy = std::sin(pi * y);
+    return std::array<double, 3>{sx * sx * std::sin(2 * pi * y), -sy * sy * std::sin(2 * pi * x), 0};
+  });
+  double before = flow.observables().kinetic_energy;
+  for (int k = 0; k < 5; ++k)
+  {
+    flow.step(0.05);
+    const double now = flow.observables().kinetic_energy;
+    EXPECT_LT(now, before) << "step " << k;
+    before = now;
+  }
+  std::printf("  kinetic energy after 5 steps: %.4e\n", before);
+}
+
+TEST(FlowPhysics, MembraneForceActsAsABodyForce)
+{
+  // f_membrane written by a coupling drives the Poiseuille flow like `force` does.
+  const double f = 2.0;
+  auto profile = [=](double, double y, double) {
+    return std::array<double, 3>{f / 2 * y * (1 - y), 0, 0};
+  };
+  FlowParameters p;
+  p.walls = {{Side::bottom, WallKind::no_slip}, {Side::top, WallKind::no_slip},
+             {Side::left, WallKind::prescribed, {}, profile},
+             {Side::right, WallKind::prescribed, {}, profile}};
+  FlowModule flow(p, MPI_COMM_WORLD);
+  flow.attach(box_mesh({2, 1, 0}, {4, 2, 0}));
+  compat::interpolate_vector(*flow.membrane_force(),
+                             [=](double, double, double) { return std::array<double, 3>{f, 0, 0}; });
+  flow.step(0.1);
+  EXPECT_LT(max_nodal_error(*flow.velocity(), profile), 1e-10);
+}
+
+TEST(FlowPhysics, CapillaryForceGivesTheLaplacePressureJump)
+{
+  // A circle of radius R with the tanh profile (2.12) and mu = (1 - phi^2)/(sqrt2 R), the
+  // CH potential -eps Lap phi + W'(phi)/eps at the interface. mu grad phi is then a radial
+  // gradient: v = 0, and the pressure jumps by capillary * 2 sqrt2 / (3 R) across the
+  // interface (int (1 - phi^2)^2 dr = 4 sqrt2 eps / 3). With capillary = 3 sigma/(2 sqrt2)
+  // (section 2.8) this is Laplace's law sigma / R.
+  const double R = 0.3, eps = 0.04, sigma = 1.0;
+  auto mesh = box_mesh({1, 1, 0}, {32, 32, 0});
+  auto V = compat::create_space(flow_forms(2).space, "phi", mesh);
+  auto phi = std::make_shared<Function>(V), mu = std::make_shared<Function>(V);
+  auto profile = [=](double x, double y)
+  { return std::tanh((R - std::hypot(x - 0.5, y - 0.5)) / (std::sqrt(2.0) * eps)); };
+  compat::interpolate(*phi, [&](double x, double y, double) { return profile(x, y); });
+  compat::interpolate(*mu, [&](double x, double y, double)
+                      { return (1 - std::pow(profile(x, y), 2)) / (std::sqrt(2.0) * R); });
+  FlowParameters p;
+  p.capillary = 3 * sigma / (2 * std::sqrt(2.0));
+  p.walls = closed_box({});
+  FlowModule flow(p, MPI_COMM_WORLD);
+  flow.attach(mesh, phi, mu);
+  flow.step(0.1);
+
+  auto eval = compat::make_evaluator(flow.pressure());
+  std::vector<double> pts{0.5, 0.5, 0, 0.0, 0.0, 0}, vals(2);
+  eval(pts, vals);
+  const double jump = vals[0] - vals[1];
+  double vmax = 0;
+  for (double v : flow.velocity()->x()->array())
+    vmax = std::max(vmax, std::abs(v));
+  std::printf("  Laplace: p_in - p_out = %.5f (sigma/R = %.5f), max |v| = %.2e\n", jump,
+              sigma / R, vmax);
+  // The jump is exact up to the interpolation of phi and mu (~ (h/eps)^3); 1% is loose.
+  EXPECT_NEAR(jump, sigma / R, 0.01 * sigma / R);
+  // Spurious currents: only the discrete force mu_h grad phi_h is not a gradient.
+  EXPECT_LT(vmax, 1e-3 * sigma / R);
 }
