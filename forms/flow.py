@@ -56,6 +56,7 @@ eta = eta_of(phic)
 # Extra mass flux of the thermodynamically consistent variable-density model (section 2.8):
 # the term d rho/d phi gamma grad(dE/dphi).grad v there equals -(J.grad) v with
 # J = -(rho1 - rho0)/2 * gamma * grad mu.
+# gamma is constant here, as in forms/cahn_hilliard.py (the thesis allows gamma(phi)).
 J = -(rho1 - rho0) / 2 * mobility * grad(mu)
 
 # Phase-dependent integrands are polynomials of degree up to 7 (rho v^n.grad v.w); the
@@ -63,22 +64,27 @@ J = -(rho1 - rho0) / 2 * mobility * grad(mu)
 # The pressure terms keep the exact automatic degree.
 dxq = dx(metadata={"quadrature_degree": QDEG})
 
-a = (Re * rho / dt * inner(v, w)                                      # Re rho d_t v, 5.3 (1)
+a = (Re * rho / dt * inner(v, w)                                      # Re rho d_t v, 5.3 (1), (3.43)
      + convection * Re * inner(grad(v) * (rho * v0 + J), w)           # (v^n.grad)v, 5.3 (1); J, 2.8
-     # Temam's term: zero for div v^n = 0, keeps the linearised convection dissipative
-     # although v^n is only weakly divergence-free (2.59 holds discretely)
+     # Temam's term: zero for div v^n = 0 (consistent). For constant rho and J = 0 it makes
+     # the linearised convection do no work although v^n is only weakly divergence-free,
+     # i.e. (2.59) holds discretely and E_kin obeys (2.61). (With variable rho an exact
+     # discrete law would need rho(phi^{n+1}), unknown in step 1 of the split.)
      + convection * Re * rho / 2 * div(v0) * inner(v, w)
+     # -div(2 eta(phi) D(v)), (2.49)/(2.56) (written eta D there; with the factor 2, eta = 1
+     # and div v = 0 give the Lap v of 5.3 (1))
      + 2 * eta * inner(D(v), D(w))) * dxq \
-    + (-p * div(w) - q * div(v)) * dx                                 # grad p, (2.57)
+    + (-p * div(w)                                                    # grad p, (2.47)/(2.56)
+       - q * div(v)) * dx                                             # div v = 0, (2.57)
 
 # Body forces F of (2.47): rho_i g per phase and a constant force; the capillary force
 # dE_S/dphi grad phi of model H (2.8, 5.3 (1)) with mu the CH chemical potential and
 # `capillary` its prefactor (3 sigma / (2 sqrt2) in 2.8, 1/Ca with the scaling of 3.4);
 # f_membrane carries the Helfrich/active forces (3.59), (5.7) once coupled.
-L = (Re * rho / dt * inner(v0, w)
-     + inner(rho * gravity + force, w)
-     + capillary * mu * inner(grad(phi), w)
-     + inner(f_membrane, w)) * dxq
+L = (Re * rho / dt * inner(v0, w)                                     # v^n of d_t v, 5.3 (1)
+     + inner(rho * gravity + force, w)                                 # F, (2.47)
+     + capillary * mu * inner(grad(phi), w)                            # dE/dphi grad phi, 2.8
+     + inner(f_membrane, w)) * dxq                                     # (3.59), (5.7)
 
 # Observables of the current velocity (v0 after a step)
 kinetic_energy = rho / 2 * inner(v0, v0) * dxq                           # (2.54)
