@@ -58,6 +58,10 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
                         std::shared_ptr<const Function> mu,
                         std::shared_ptr<const Function> velocity)
 {
+  for (const auto& f : {phi, mu, velocity})
+    if (f && f->function_space()->mesh() != mesh)
+      throw std::invalid_argument("flow: phi, mu and the velocity must live on the flow's mesh"
+                                  " (transfer them after a remesh)");
   mesh_ = mesh;
   const int dim = mesh->topology().dim();
   if (!forms_.a)
