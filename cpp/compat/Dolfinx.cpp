@@ -2,6 +2,7 @@
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/geometry/utils.h>
 #include <dolfinx/refinement/refine.h>
+#include <limits>
 #include <numeric>
 #include <xtensor/xarray.hpp>
 
@@ -77,6 +78,90 @@ void interpolate(Function& u, const PointFunction& f)
           v(i) = f(x(0, i), x(1, i), x(2, i));
         return v;
       });
+}
+
+void interpolate_vector(Function& u, const VectorPointFunction& f)
+{
+  const std::size_t bs = u.function_space()->dofmap()->index_map_bs();
+  u.interpolate(
+      [&f, bs](const xt::xtensor<double, 2>& x) -> xt::xarray<T>
+      {
+        xt::xarray<T> v = xt::empty<T>({bs, x.shape(1)});
+        for (std::size_t i = 0; i < x.shape(1); ++i)
+        {
+          const auto fi = f(x(0, i), x(1, i), x(2, i));
+          for (std::size_t c = 0; c < bs; ++c)
+            v(c, i) = fi[c];
+        }
+        return v;
+      });
+}
+
+namespace
+{
+/// A position test as the xtensor marker callback of 0.5.2 (x has 3 rows of N points).
+std::function<xt::xtensor<bool, 1>(const xt::xtensor<double, 2>&)> xmarker(const PointMarker& m)
+{
+  return [m](const xt::xtensor<double, 2>& x)
+  {
+    xt::xtensor<bool, 1> on = xt::empty<bool>({x.shape(1)});
+    for (std::size_t i = 0; i < x.shape(1); ++i)
+      on(i) = m(x(0, i), x(1, i), x(2, i));
+    return on;
+  };
+}
+} // namespace
+
+CollapsedSpace collapse(const Space& W, const std::vector<int>& component)
+{
+  CollapsedSpace s;
+  // One level at a time: 0.5.2 cannot extract a path such as {0, 2} from the root at once.
+  std::shared_ptr<const Space> sub = W.sub({component[0]});
+  for (std::size_t i = 1; i < component.size(); ++i)
+    sub = sub->sub({component[i]});
+  s.sub = sub;
+  auto [V, map] = s.sub->collapse();
+  s.space = std::make_shared<Space>(std::move(V));
+  s.to_parent = std::move(map);
+  return s;
+}
+
+std::vector<std::int32_t> boundary_facets(const Mesh& m, const PointMarker& on)
+{
+  const int tdim = m.topology().dim();
+  auto& topology = const_cast<Mesh&>(m).topology_mutable();
+  topology.create_connectivity(tdim - 1, tdim);
+  return mesh::locate_entities_boundary(m, tdim - 1, xmarker(on));
+}
+
+std::array<std::vector<std::int32_t>, 2> facet_dofs(const CollapsedSpace& s,
+                                                    const std::vector<std::int32_t>& facets)
+{
+  const int tdim = s.space->mesh()->topology().dim();
+  return fem::locate_dofs_topological({*s.sub, *s.space}, tdim - 1,
+                                      std::span<const std::int32_t>(facets));
+}
+
+std::array<std::vector<std::int32_t>, 2> dofs_at(const CollapsedSpace& s, const PointMarker& at)
+{
+  return fem::locate_dofs_geometrical({*s.sub, *s.space}, xmarker(at));
+}
+
+std::array<std::array<double, 3>, 2> bounding_box(const Mesh& m)
+{
+  std::array<double, 3> lo, hi;
+  lo.fill(std::numeric_limits<double>::max());
+  hi.fill(std::numeric_limits<double>::lowest());
+  auto x = m.geometry().x();
+  for (std::size_t i = 0; i < x.size(); i += 3)
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = std::min(lo[d], x[i + d]);
+      hi[d] = std::max(hi[d], x[i + d]);
+    }
+  MPI_Allreduce(MPI_IN_PLACE, lo.data(), 3, MPI_DOUBLE, MPI_MIN, m.comm());
+  MPI_Allreduce(MPI_IN_PLACE, hi.data(), 3, MPI_DOUBLE, MPI_MAX, m.comm());
+  return {lo, hi};
 }
 
 namespace

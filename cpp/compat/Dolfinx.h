@@ -29,6 +29,10 @@ using ufcx_space_fn = ufcx_function_space* (*)(const char*);
 
 /// A scalar field given by a formula of the position.
 using PointFunction = std::function<double(double x, double y, double z)>;
+/// A vector field given by a formula of the position (components beyond the dimension unused).
+using VectorPointFunction = std::function<std::array<double, 3>(double x, double y, double z)>;
+/// A test of the position (markers of facets and dofs).
+using PointMarker = std::function<bool(double x, double y, double z)>;
 /// Evaluates a scalar field at N points (coordinates as N rows of 3) into N values.
 using PointEvaluator = std::function<void(std::span<const double> points, std::span<double> values)>;
 } // namespace cellphase
@@ -61,6 +65,9 @@ double assemble_scalar(const Form& form);
 /// u <- f at u's interpolation points.
 void interpolate(Function& u, const PointFunction& f);
 
+/// u <- f at u's interpolation points, for a vector-valued u (blocked space).
+void interpolate_vector(Function& u, const VectorPointFunction& f);
+
 /// Point evaluator of a function on its mesh. Points must lie in cells of the local part
 /// of the mesh, which holds for meshes refined from the same base mesh without
 /// redistribution; points just outside (round-off) use the closest cell.
@@ -75,6 +82,29 @@ std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, 
 
 /// Dofs of a (non-mixed) space on the domain boundary.
 std::vector<std::int32_t> boundary_dofs(const Space& V);
+
+/// Sub-space of a mixed space (component path such as {0} or {0, 1}), its collapsed copy
+/// and the map from the collapsed space's local dofs (unrolled) to the mixed space's.
+struct CollapsedSpace
+{
+  std::shared_ptr<const Space> sub;
+  std::shared_ptr<Space> space;
+  std::vector<std::int32_t> to_parent;
+};
+CollapsedSpace collapse(const Space& W, const std::vector<int>& component);
+
+/// Boundary facets all of whose vertices satisfy `on`.
+std::vector<std::int32_t> boundary_facets(const Mesh& mesh, const PointMarker& on);
+
+/// Dofs of a collapsed sub-space on the given facets, as (dofs in W, dofs in the copy).
+std::array<std::vector<std::int32_t>, 2> facet_dofs(const CollapsedSpace& s,
+                                                    const std::vector<std::int32_t>& facets);
+
+/// Dofs of a collapsed sub-space whose nodes satisfy `at`, as (dofs in W, dofs in the copy).
+std::array<std::vector<std::int32_t>, 2> dofs_at(const CollapsedSpace& s, const PointMarker& at);
+
+/// Lower and upper corner of the axis-aligned bounding box of the whole (distributed) mesh.
+std::array<std::array<double, 3>, 2> bounding_box(const Mesh& mesh);
 
 /// Coordinates (N x 3) of the vertices of each local cell, cell after cell.
 std::vector<double> cell_vertex_coordinates(const Mesh& mesh, std::int32_t cell);

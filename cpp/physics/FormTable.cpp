@@ -3,6 +3,8 @@
 #include "allen_cahn_3d.h"
 #include "cahn_hilliard_2d.h"
 #include "cahn_hilliard_3d.h"
+#include "flow_2d.h"
+#include "flow_3d.h"
 #include "helfrich_hm1_2d.h"
 #include "helfrich_hm1_3d.h"
 #include "helfrich_l2_2d.h"
@@ -84,6 +86,32 @@ ObservableForms observable_forms(int dim)
   {
     CELLPHASE_OBSERVABLES(3d)
     f.com[2] = form_observables_3d_com_2;
+  }
+  return f;
+}
+
+FlowForms flow_forms(int dim)
+{
+  FlowForms f;
+#define CELLPHASE_FLOW(D)                                                                       \
+  f.a = form_flow_##D##_a;                                                                      \
+  f.L = form_flow_##D##_L;                                                                      \
+  f.kinetic_energy = form_flow_##D##_kinetic_energy;                                            \
+  f.divergence_sq = form_flow_##D##_divergence_sq;                                              \
+  f.phase_weight = form_flow_##D##_phase_weight;                                                \
+  f.phase_velocity[0] = form_flow_##D##_phase_velocity_0;                                       \
+  f.phase_velocity[1] = form_flow_##D##_phase_velocity_1;                                       \
+  f.pressure_integral = form_flow_##D##_pressure_integral;                                      \
+  f.domain_volume = form_flow_##D##_domain_volume;                                              \
+  f.space = functionspace_form_flow_##D##_a;
+  if (dim == 2)
+  {
+    CELLPHASE_FLOW(2d)
+  }
+  else
+  {
+    CELLPHASE_FLOW(3d)
+    f.phase_velocity[2] = form_flow_3d_phase_velocity_2;
   }
   return f;
 }

@@ -36,6 +36,21 @@ struct ObservableForms
   ufcx_space_fn p2_space = nullptr; ///< scalar P2 (coefficient "phi")
 };
 
+/// Forms of forms/flow.py (or a test file that extends it with the same names).
+struct FlowForms
+{
+  ufcx_form* a = nullptr; ///< Taylor-Hood system of one semi-implicit step
+  ufcx_form* L = nullptr;
+  ufcx_form* kinetic_energy = nullptr;
+  ufcx_form* divergence_sq = nullptr;
+  ufcx_form* phase_weight = nullptr;
+  std::array<ufcx_form*, 3> phase_velocity{nullptr, nullptr, nullptr};
+  ufcx_form* pressure_integral = nullptr;
+  ufcx_form* domain_volume = nullptr;
+  ufcx_space_fn space = nullptr; ///< spaces of `a`: "v_0" (Taylor-Hood), "v0", "phi", "p_h"
+};
+
 ModelForms model_forms(scene::Model model, int dim);
 ObservableForms observable_forms(int dim);
+FlowForms flow_forms(int dim);
 } // namespace cellphase

@@ -1,0 +1,315 @@
+#include "physics/FlowModule.h"
+#include "solve/Assemble.h"
+#include "util/Clock.h"
+#include <dolfinx/common/log.h>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace cellphase
+{
+using namespace dolfinx;
+
+namespace
+{
+std::shared_ptr<Constant> constant(double v) { return std::make_shared<Constant>(v); }
+
+std::shared_ptr<Constant> vector_constant(const std::array<double, 3>& v, int dim)
+{
+  return std::make_shared<Constant>(std::span<const T>(v.data(), std::size_t(dim)));
+}
+
+int axis_of(Side s) { return int(s) / 2; }
+bool is_upper(Side s) { return int(s) % 2 == 1; }
+
+bool same(const std::vector<T>& remembered, const Function& f)
+{
+  auto now = f.x()->array();
+  return std::equal(now.begin(), now.end(), remembered.begin(), remembered.end());
+}
+
+std::vector<T> copy_of(const Function& f)
+{
+  auto a = f.x()->array();
+  return std::vector<T>(a.begin(), a.end());
+}
+} // namespace
+
+FlowModule::FlowModule(const FlowParameters& parameters, MPI_Comm comm, FlowForms forms)
+    : params_(parameters), comm_(comm), forms_(forms)
+{
+  const auto& p = params_;
+  dt_ = constant(1.0);
+  constants_ = {{"dt", dt_},
+                {"Re", constant(p.Re)},
+                {"convection", constant(p.convection ? 1.0 : 0.0)},
+                {"rho0", constant(p.density[0])},
+                {"rho1", constant(p.density[1])},
+                {"eta0", constant(p.viscosity[0])},
+                {"eta1", constant(p.viscosity[1])},
+                {"mobility", constant(p.mobility)},
+                {"capillary", constant(p.capillary)},
+                {"one", constant(1.0)}};
+}
+
+std::int64_t FlowModule::num_dofs() const { return compat::num_global_dofs(*W_); }
+
+void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const Function> phi,
+                        std::shared_ptr<const Function> mu,
+                        std::shared_ptr<const Function> velocity)
+{
+  for (const auto& f : {phi, mu, velocity})
+    if (f && f->function_space()->mesh() != mesh)
+      throw std::invalid_argument("flow: phi, mu and the velocity must live on the flow's mesh"
+                                  " (transfer them after a remesh)");
+  mesh_ = mesh;
+  const int dim = mesh->topology().dim();
+  if (!forms_.a)
+    forms_ = flow_forms(dim);
+  constants_["gravity"] = vector_constant(params_.gravity, dim);
+  constants_["force"] = vector_constant(params_.force, dim);
+
+  W_ = compat::create_space(forms_.space, "v_0", mesh);
+  Vv_ = compat::collapse(*W_, {0});
+  Q_ = compat::collapse(*W_, {1});
+  // Defaults for a flow without a phase field: all surrounding fluid.
+  if (!phi || !mu)
+  {
+    auto V = compat::create_space(forms_.space, "phi", mesh);
+    if (!phi)
+    {
+      auto f = std::make_shared<Function>(V);
+      f->x()->set(-1.0);
+      phi = f;
+    }
+    if (!mu)
+    {
+      auto f = std::make_shared<Function>(V);
+      f->x()->set(0.0);
+      mu = f;
+    }
+  }
+  phi_ = phi;
+  mu_ = mu;
+  velocity_ = std::make_shared<Function>(Vv_.space);
+  velocity_->name = "v";
+  velocity_->x()->set(0.0);
+  if (velocity)
+    velocity_->interpolate(*velocity); // same element and mesh: a copy in our dof order
+  pressure_ = std::make_shared<Function>(Q_.space);
+  pressure_->name = "p";
+  pressure_->x()->set(0.0);
+  membrane_force_ = std::make_shared<Function>(Vv_.space);
+  membrane_force_->x()->set(0.0);
+
+  build_bcs();
+  bind_forms();
+  A_ = create_matrix(*a_);
+  b_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+  x_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+  solver_ = std::make_unique<LinearSolver>(comm_, "flow_", params_.petsc);
+  factorised_ = false;
+}
+
+void FlowModule::build_bcs()
+{
+  const int dim = mesh_->topology().dim();
+  const auto box = compat::bounding_box(*mesh_);
+  const std::array<double, 3> lo = box[0], hi = box[1];
+  double extent = 0;
+  for (int d = 0; d < dim; ++d)
+    extent = std::max(extent, hi[d] - lo[d]);
+  const double tol = 1e-8 * extent;
+
+  bc_values_.clear();
+  bcs_.clear();
+  std::vector<bool> closed(2 * dim, false);
+  // Free-slip first, then no-slip, then moving/prescribed: at shared dofs the last BC wins.
+  auto rank = [](WallKind k)
+  { return k == WallKind::free_slip ? 0 : k == WallKind::no_slip ? 1 : 2; };
+  std::vector<Wall> walls = params_.walls;
+  std::stable_sort(walls.begin(), walls.end(),
+                   [&](const Wall& a, const Wall& b) { return rank(a.kind) < rank(b.kind); });
+  for (const Wall& wall : walls)
+  {
+    const int axis = axis_of(wall.side);
+    if (axis >= dim)
+      throw std::invalid_argument("flow: front/back walls need a 3D mesh");
+    closed[int(wall.side)] = true;
+    const double plane = is_upper(wall.side) ? hi[axis] : lo[axis];
+    auto facets = compat::boundary_facets(
+        *mesh_, [=](double x, double y, double z)
+        { return std::abs(std::array<double, 3>{x, y, z}[axis] - plane) < tol; });
+
+    if (wall.kind == WallKind::free_slip)
+    {
+      // Only the normal component is fixed (v.n = 0); the tangential stress vanishes
+      // naturally.
+      auto component = compat::collapse(*W_, {0, axis});
+      auto zero = std::make_shared<Function>(component.space);
+      zero->x()->set(0.0);
+      bc_values_.push_back(zero);
+      bcs_.push_back(std::make_shared<DirichletBC>(zero, compat::facet_dofs(component, facets),
+                                                   component.sub));
+      continue;
+    }
+    auto g = std::make_shared<Function>(Vv_.space);
+    if (wall.kind == WallKind::no_slip)
+      g->x()->set(0.0);
+    else if (wall.kind == WallKind::moving)
+    {
+      auto u = wall.velocity;
+      u[axis] = 0; // the wall moves in its plane
+      compat::interpolate_vector(*g, [u](double, double, double) { return u; });
+    }
+    else
+    {
+      if (!wall.profile)
+        throw std::invalid_argument("flow: a prescribed wall needs a velocity profile");
+      compat::interpolate_vector(*g, wall.profile);
+    }
+    bc_values_.push_back(g);
+    bcs_.push_back(std::make_shared<DirichletBC>(g, compat::facet_dofs(Vv_, facets), Vv_.sub));
+  }
+
+  // With v.n prescribed on every side the pressure is determined up to a constant only.
+  // MUMPS could factorise the singular matrix with null-pivot detection (ICNTL(24)) and a
+  // PETSc null space, but that depends on a pivot threshold; pinning one pressure dof makes
+  // the matrix regular. This is exact: with v.n = 0 (or zero net flux) on the boundary the
+  // dropped continuity row is the sum of the others. The mean is removed after the solve.
+  pinned_ = std::all_of(closed.begin(), closed.end(), [](bool c) { return c; });
+  if (pinned_)
+  {
+    auto corner = compat::dofs_at(Q_, [&](double x, double y, double z)
+                                  {
+                                    const std::array<double, 3> p{x, y, z};
+                                    for (int d = 0; d < dim; ++d)
+                                      if (std::abs(p[d] - lo[d]) > tol)
+                                        return false;
+                                    return true;
+                                  });
+    int found = corner[0].empty() ? 0 : 1;
+    MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPI_INT, MPI_MAX, comm_);
+    if (!found)
+      throw std::runtime_error("flow: no pressure node at the lower corner of the box");
+    auto zero = std::make_shared<Function>(Q_.space);
+    zero->x()->set(0.0);
+    bc_values_.push_back(zero);
+    bcs_.push_back(std::make_shared<DirichletBC>(zero, std::move(corner), Q_.sub));
+  }
+}
+
+void FlowModule::bind_forms()
+{
+  CoefficientMap coeffs{{"v0", velocity_},
+                        {"phi", phi_},
+                        {"mu", mu_},
+                        {"f_membrane", membrane_force_},
+                        {"p_h", pressure_}};
+  a_ = compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_);
+  L_ = compat::create_form(*forms_.L, {W_}, coeffs, constants_);
+  auto functional = [&](ufcx_form* f) -> std::shared_ptr<Form>
+  { return f ? compat::create_form(*f, {}, coeffs, constants_, mesh_) : nullptr; };
+  kinetic_ = functional(forms_.kinetic_energy);
+  divergence_ = functional(forms_.divergence_sq);
+  phase_weight_ = functional(forms_.phase_weight);
+  pressure_integral_ = functional(forms_.pressure_integral);
+  phase_velocity_.clear();
+  for (int d = 0; d < mesh_->topology().dim(); ++d)
+    phase_velocity_.push_back(functional(forms_.phase_velocity[d]));
+  domain_volume_ = compat::assemble_scalar(*functional(forms_.domain_volume));
+}
+
+bool FlowModule::matrix_outdated(double dt) const
+{
+  // Decided together: a rank whose part of phi changed makes all ranks refactorise.
+  int outdated = local_matrix_outdated(dt) ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &outdated, 1, MPI_INT, MPI_MAX, comm_);
+  return outdated != 0;
+}
+
+bool FlowModule::local_matrix_outdated(double dt) const
+{
+  if (!factorised_)
+    return true;
+  // Which inputs enter the matrix of forms/flow.py for these parameters.
+  const auto& p = params_;
+  const bool inertia = p.Re != 0;
+  const bool transport = inertia && p.convection;
+  const bool variable_density = p.density[0] != p.density[1];
+  const bool variable_viscosity = p.viscosity[0] != p.viscosity[1];
+  if (inertia && dt != factorised_dt_)
+    return true;
+  if ((variable_viscosity || (inertia && variable_density)) && !same(factorised_phi_, *phi_))
+    return true;
+  if (transport && variable_density && p.mobility != 0 && !same(factorised_mu_, *mu_))
+    return true;
+  return transport && !same(factorised_v_, *velocity_);
+}
+
+void FlowModule::remember_matrix_inputs(double dt)
+{
+  factorised_ = true;
+  factorised_dt_ = dt;
+  factorised_phi_ = copy_of(*phi_);
+  factorised_mu_ = copy_of(*mu_);
+  factorised_v_ = copy_of(*velocity_);
+}
+
+FlowTimings FlowModule::step(double dt)
+{
+  FlowTimings t;
+  auto t0 = Clock::now();
+  dt_->value[0] = dt;
+  t.factorised = matrix_outdated(dt);
+  if (t.factorised)
+    assemble_matrix(A_->mat(), *a_, bcs_);
+  assemble_rhs(*b_, *L_, a_, bcs_);
+  t.assemble = seconds_since(t0);
+  if (t.factorised)
+  {
+    t.factorise = solver_->set_operator(A_->mat());
+    ++factorisations_;
+    remember_matrix_inputs(dt);
+    LOG(INFO) << "flow: factorisation " << factorisations_ << " (" << t.factorise << " s)";
+  }
+  auto t1 = Clock::now();
+  solver_->solve(*b_, *x_, "the flow");
+  store_solution();
+  t.solve = seconds_since(t1);
+  return t;
+}
+
+void FlowModule::store_solution()
+{
+  auto x = x_->array();
+  auto v = velocity_->x()->mutable_array();
+  auto p = pressure_->x()->mutable_array();
+  if (v.size() != Vv_.to_parent.size() || p.size() != Q_.to_parent.size())
+    throw std::logic_error("flow: collapsed dof maps do not match the velocity/pressure");
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = x[Vv_.to_parent[i]];
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p[i] = x[Q_.to_parent[i]];
+  if (pinned_)
+  {
+    // Zero mean instead of the arbitrary value at the pinned node.
+    const double mean = compat::assemble_scalar(*pressure_integral_) / domain_volume_;
+    for (auto& pi : p)
+      pi -= mean;
+  }
+}
+
+FlowObservables FlowModule::observables() const
+{
+  FlowObservables o;
+  o.kinetic_energy = compat::assemble_scalar(*kinetic_);
+  o.divergence_l2 = std::sqrt(compat::assemble_scalar(*divergence_));
+  const double weight = compat::assemble_scalar(*phase_weight_);
+  // No cell (phi~ = 0 everywhere): the mean velocity is undefined, report 0.
+  if (weight > 1e-12 * domain_volume_)
+    for (std::size_t d = 0; d < phase_velocity_.size(); ++d)
+      o.cell_velocity[d] = compat::assemble_scalar(*phase_velocity_[d]) / weight;
+  return o;
+}
+} // namespace cellphase

@@ -1,0 +1,132 @@
+// The flow subproblem of the operator split (section 5.3, step 1): one semi-implicit step
+// of the two-phase Navier-Stokes / Stokes equations (2.47)-(2.57), section 2.8, on a
+// P2/P1 Taylor-Hood space, for a given phase field phi and chemical potential mu.
+#pragma once
+#include "compat/Dolfinx.h"
+#include "physics/FormTable.h"
+#include "solve/LinearSolver.h"
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cellphase
+{
+/// Sides of the (axis-aligned) box: left/right x = min/max, bottom/top y, front/back z.
+enum class Side { left, right, bottom, top, front, back };
+
+enum class WallKind
+{
+  no_slip,    ///< v = 0
+  moving,     ///< v = tangential part of `velocity` (its normal component is dropped)
+  free_slip,  ///< v.n = 0, no tangential stress
+  prescribed, ///< v = profile(x) (in/outflow profiles)
+};
+
+/// Velocity condition on one side. Sides without a wall are traction-free (natural
+/// condition (2 eta D(v) - p I) n = 0). Where sides meet, moving/prescribed walls win over
+/// no-slip, which wins over free-slip.
+struct Wall
+{
+  Side side = Side::bottom;
+  WallKind kind = WallKind::no_slip;
+  std::array<double, 3> velocity{0, 0, 0};
+  VectorPointFunction profile;
+};
+
+/// Dimensionless parameters of the flow. Index 0 of the two-phase pairs is the surrounding
+/// fluid (phi = -1), index 1 the cell (phi = +1).
+struct FlowParameters
+{
+  double Re = 0;           ///< 0: Stokes (no time derivative, no convection)
+  bool convection = true;  ///< false: time-dependent Stokes (no transport terms)
+  std::array<double, 2> density{1, 1};
+  std::array<double, 2> viscosity{1, 1}; ///< interpolated as (2.56)
+  double mobility = 0;     ///< gamma of the variable-density flux J (2.8)
+  double capillary = 0;    ///< prefactor of the capillary force mu grad phi (2.8)
+  std::array<double, 3> gravity{0, 0, 0}; ///< times rho(phi)
+  std::array<double, 3> force{0, 0, 0};   ///< constant body force density
+  std::vector<Wall> walls;
+  std::map<std::string, std::string> petsc; ///< options under the prefix flow_
+};
+
+struct FlowTimings
+{
+  double assemble = 0, factorise = 0, solve = 0;
+  bool factorised = false; ///< a new factorisation was needed this step
+};
+
+struct FlowObservables
+{
+  double kinetic_energy = 0;                ///< 1/2 int rho(phi) |v|^2, (2.54)
+  std::array<double, 3> cell_velocity{0, 0, 0}; ///< int phi~ v / int phi~, phi~ = (1+phi)/2
+  double divergence_l2 = 0;                 ///< || div v ||_L2
+};
+
+class FlowModule
+{
+public:
+  /// `forms` defaults to forms/flow.py of the mesh's dimension (tests pass extended forms).
+  FlowModule(const FlowParameters& parameters, MPI_Comm comm, FlowForms forms = {});
+
+  /// Build the Taylor-Hood space, BCs, forms and solver on a (new) mesh. phi and mu are
+  /// P2 functions on this mesh read at every step (null: phi = -1, mu = 0); `velocity`
+  /// (vector P2 on this mesh, any dof numbering) is the initial v^n (null: v = 0).
+  void attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const Function> phi = nullptr,
+              std::shared_ptr<const Function> mu = nullptr,
+              std::shared_ptr<const Function> velocity = nullptr);
+  /// v^n -> v^{n+1}, p^{n+1}. The matrix is rebuilt and refactorised only if something it
+  /// depends on changed since the last factorisation (dt, phi, mu, v^n, the mesh).
+  FlowTimings step(double dt);
+
+  /// v (vector P2, holds v^n before and v^{n+1} after a step), p (P1).
+  std::shared_ptr<Function> velocity() const { return velocity_; }
+  std::shared_ptr<Function> pressure() const { return pressure_; }
+  /// Extra force density f_membrane (vector P2), zero unless a coupling writes into it.
+  std::shared_ptr<Function> membrane_force() const { return membrane_force_; }
+  FlowObservables observables() const;
+  /// Matrix factorisations since construction (all meshes).
+  int factorisations() const { return factorisations_; }
+  /// The pressure is fixed at one dof and shifted to zero mean (closed box).
+  bool pressure_pinned() const { return pinned_; }
+  std::int64_t num_dofs() const;
+
+private:
+  void build_bcs();
+  void bind_forms();
+  bool matrix_outdated(double dt) const;
+  bool local_matrix_outdated(double dt) const;
+  void remember_matrix_inputs(double dt);
+  void store_solution();
+
+  FlowParameters params_;
+  MPI_Comm comm_;
+  FlowForms forms_;
+  ConstantMap constants_;
+  std::shared_ptr<Constant> dt_;
+
+  std::shared_ptr<const Mesh> mesh_;
+  std::shared_ptr<Space> W_;
+  compat::CollapsedSpace Vv_, Q_;
+  std::shared_ptr<const Function> phi_, mu_;
+  std::shared_ptr<Function> velocity_, pressure_, membrane_force_;
+  std::vector<std::shared_ptr<Function>> bc_values_;
+  BCs bcs_;
+  bool pinned_ = false;
+
+  std::shared_ptr<Form> a_, L_;
+  std::shared_ptr<Form> kinetic_, divergence_, phase_weight_, pressure_integral_;
+  std::vector<std::shared_ptr<Form>> phase_velocity_;
+  double domain_volume_ = 0;
+
+  std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
+  std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
+  std::unique_ptr<LinearSolver> solver_;
+  /// Inputs of the factorised matrix; a step compares them with the current ones.
+  bool factorised_ = false;
+  double factorised_dt_ = 0;
+  std::vector<T> factorised_phi_, factorised_mu_, factorised_v_;
+  int factorisations_ = 0;
+};
+} // namespace cellphase

@@ -1,0 +1,103 @@
+# Incompressible two-phase flow, one semi-implicit step of section 5.3 (step 1) for the
+# variable density/viscosity model of section 2.8:
+#   Re [rho(phi) (d_t v + (v^n.grad) v^{n+1}) + (J.grad) v^{n+1}] + grad p
+#       = div(2 eta(phi) D(v^{n+1})) + F,        div v^{n+1} = 0
+# on a P2/P1 Taylor-Hood pair (section 5.3). Re = 0 gives (quasi-steady) Stokes; the switch
+# `convection` = 0 drops the transport terms (time-dependent Stokes, constant matrix).
+from ufl import (Coefficient, Constant, FiniteElement, FunctionSpace, MixedElement,
+                 TestFunctions, TrialFunctions, VectorElement, div, dx, grad, inner,
+                 max_value, min_value, sym)
+
+from cellphase_ufl import DIM, P2, QDEG, cell, constants, domain
+
+P2v = VectorElement("Lagrange", cell, 2)
+P1 = FiniteElement("Lagrange", cell, 1)
+TH = FunctionSpace(domain, MixedElement([P2v, P1]))     # Taylor-Hood, section 5.3
+Vvec = FunctionSpace(domain, P2v)
+Vphi = FunctionSpace(domain, P2)
+Q = FunctionSpace(domain, P1)
+
+(v, p), (w, q) = TrialFunctions(TH), TestFunctions(TH)
+v0 = Coefficient(Vvec)          # v^n; after a step the module stores v^{n+1} here
+phi = Coefficient(Vphi)         # phase field of the last phase-field step
+mu = Coefficient(Vphi)          # its chemical potential (CH: -eps Lap phi + W'(phi)/eps)
+f_membrane = Coefficient(Vvec)  # further interface forces, provided by the coupling
+p_h = Coefficient(Q)            # pressure, for its mean value
+(dt, Re, convection, rho0, rho1, eta0, eta1, mobility, capillary,
+ one) = constants("dt", "Re", "convection", "rho0", "rho1", "eta0", "eta1", "mobility",
+                  "capillary", "one")
+gravity = Constant(domain, shape=(DIM,))  # acceleration, multiplied by rho(phi)
+force = Constant(domain, shape=(DIM,))    # body force density independent of the phase
+
+# Material laws. Index 1 is the cell (phi = +1), index 0 the surrounding fluid (phi = -1).
+# phi is clipped to [-1, 1] so that P2 overshoots of the tanh profile (2.12) cannot make
+# rho or eta negative for large contrasts.
+phic = max_value(min_value(phi, 1.0), -1.0)
+
+
+def rho_of(f):
+    """Density interpolated linearly in phi like eta in (2.56)."""
+    return rho1 * (1 + f) / 2 + rho0 * (1 - f) / 2
+
+
+def eta_of(f):
+    """(2.56): eta(phi) = eta1 (1+phi)/2 + eta0 (1-phi)/2 (the thesis prints (phi-1)/2 for
+    the second weight, which would make eta negative outside; (1-phi)/2 is meant)."""
+    return eta1 * (1 + f) / 2 + eta0 * (1 - f) / 2
+
+
+def D(u):
+    """Strain rate D = (grad v + grad v^T)/2, (2.49)."""
+    return sym(grad(u))
+
+
+rho = rho_of(phic)
+eta = eta_of(phic)
+# Extra mass flux of the thermodynamically consistent variable-density model (section 2.8):
+# the term d rho/d phi gamma grad(dE/dphi).grad v there equals -(J.grad) v with
+# J = -(rho1 - rho0)/2 * gamma * grad mu.
+# gamma is constant here, as in forms/cahn_hilliard.py (the thesis allows gamma(phi)).
+J = -(rho1 - rho0) / 2 * mobility * grad(mu)
+
+# Phase-dependent integrands are polynomials of degree up to 7 (rho v^n.grad v.w); the
+# clipping makes them piecewise anyway, so QDEG (6) is used as for the phase-field forms.
+# The pressure terms keep the exact automatic degree.
+dxq = dx(metadata={"quadrature_degree": QDEG})
+
+a = (Re * rho / dt * inner(v, w)                                      # Re rho d_t v, 5.3 (1), (3.43)
+     + convection * Re * inner(grad(v) * (rho * v0 + J), w)           # (v^n.grad)v, 5.3 (1); J, 2.8
+     # Temam's term: zero for div v^n = 0 (consistent). For constant rho and J = 0 it makes
+     # the linearised convection do no work although v^n is only weakly divergence-free,
+     # i.e. (2.59) holds discretely and E_kin obeys (2.61). (With variable rho an exact
+     # discrete law would need rho(phi^{n+1}), unknown in step 1 of the split.)
+     + convection * Re * rho / 2 * div(v0) * inner(v, w)
+     # -div(2 eta(phi) D(v)), (2.49)/(2.56) (written eta D there; with the factor 2, eta = 1
+     # and div v = 0 give the Lap v of 5.3 (1))
+     + 2 * eta * inner(D(v), D(w))) * dxq \
+    + (-p * div(w)                                                    # grad p, (2.47)/(2.56)
+       - q * div(v)) * dx                                             # div v = 0, (2.57)
+
+# Body forces F of (2.47): rho_i g per phase and a constant force; the capillary force
+# dE_S/dphi grad phi of model H (2.8, 5.3 (1)) with mu the CH chemical potential and
+# `capillary` its prefactor (3 sigma / (2 sqrt2) in 2.8, 1/Ca with the scaling of 3.4);
+# f_membrane carries the Helfrich/active forces (3.59), (5.7) once coupled.
+L = (Re * rho / dt * inner(v0, w)                                     # v^n of d_t v, 5.3 (1)
+     + inner(rho * gravity + force, w)                                 # F, (2.47)
+     + capillary * mu * inner(grad(phi), w)                            # dE/dphi grad phi, 2.8
+     + inner(f_membrane, w)) * dxq                                     # (3.59), (5.7)
+
+# Observables of the current velocity (v0 after a step)
+kinetic_energy = rho / 2 * inner(v0, v0) * dxq                           # (2.54)
+divergence_sq = div(v0) ** 2 * dx                                        # |div v|^2
+phase_weight = (1 + phi) / 2 * dx                                        # int phi~ (2.14)
+phase_velocity = [(1 + phi) / 2 * v0[i] * dxq for i in range(DIM)]       # int phi~ v_i
+phase_velocity_0 = phase_velocity[0]
+phase_velocity_1 = phase_velocity[1]
+pressure_integral = p_h * dx
+domain_volume = one * dx
+
+forms = [a, L, kinetic_energy, divergence_sq, phase_weight, phase_velocity_0,
+         phase_velocity_1, pressure_integral, domain_volume]
+if DIM == 3:
+    phase_velocity_2 = phase_velocity[2]
+    forms.append(phase_velocity_2)
