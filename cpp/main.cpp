@@ -40,8 +40,10 @@ A run writes into output.directory:
                     run writes fields.restart-<step>.xdmf
   checkpoints/      checkpoint-<step>.cpk every output.checkpoints.every steps and at the
                     end (the newest output.checkpoints.keep are kept)
-Ctrl-C or SIGTERM (a queue's time limit) stops the run after the current step with a
-checkpoint and prints the command that continues it; a second Ctrl-C stops at once.
+Ctrl-C, SIGTERM or SIGUSR1 (a queue's time limit) stops the run after the current step
+with a checkpoint and prints the command that continues it; a second Ctrl-C stops at once.
+Under mpirun send SIGUSR1 to mpirun (it forwards it to every rank; SIGTERM makes it kill
+the ranks at once), e.g. #SBATCH --signal=B:USR1@300 with Slurm.
 A run that fails numerically (NaN, diverging solver, phi beyond numerics.limits.phi_bound,
 volume drift beyond numerics.limits.volume_drift) writes its last good state as a
 checkpoint and as fields, and stops.
@@ -50,7 +52,7 @@ Run in parallel with: mpirun -n 2 -x OPENBLAS_NUM_THREADS=1 cellphase run SCENE
 
 Exit status: 0 success, 2 invalid scene or arguments (or no valid checkpoint to restart
 from), 3 numerical failure, 4 other errors (for example an output directory that cannot be
-written), 5 stopped by SIGINT/SIGTERM after writing a checkpoint.
+written), 5 stopped by SIGINT, SIGTERM or SIGUSR1 after writing a checkpoint.
 )";
 
 struct Arguments

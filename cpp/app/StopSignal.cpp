@@ -18,6 +18,7 @@ void install()
 {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  std::signal(SIGUSR1, on_signal); // Open MPI's mpirun forwards it to every rank
 }
 
 bool requested(MPI_Comm comm)
@@ -35,6 +36,8 @@ const char* name()
     return "SIGINT";
   case SIGTERM:
     return "SIGTERM";
+  case SIGUSR1:
+    return "SIGUSR1";
   default:
     return received ? "a signal" : "";
   }

@@ -1,5 +1,7 @@
-// SIGINT and SIGTERM (Ctrl-C, a cluster queue's time limit) ask the run to stop after the
-// current step with a checkpoint. A second signal stops the process at once.
+// SIGINT, SIGTERM and SIGUSR1 (Ctrl-C, a cluster queue's time limit) ask the run to stop
+// after the current step with a checkpoint. A second signal stops the process at once.
+// Under mpirun send SIGUSR1 (mpirun forwards it to all ranks; on SIGINT/SIGTERM it kills
+// them) or signal the ranks themselves, as batch systems do.
 #pragma once
 #include <mpi.h>
 

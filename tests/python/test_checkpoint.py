@@ -74,9 +74,9 @@ def uninterrupted(tmp_path_factory):
     return rows(run_dir)
 
 
-def start_and_stop(scene_path, run_dir, sig, after_rows):
+def start_and_stop(scene_path, run_dir, sig, after_rows, ranks=1):
     """Start a run and send `sig` once observables.csv has `after_rows` steps."""
-    proc = subprocess.Popen([EXE, "run", str(scene_path)], stdout=subprocess.PIPE,
+    proc = subprocess.Popen(mpirun_prefix(ranks) + [EXE, "run", str(scene_path)], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     csv_path = run_dir / "observables.csv"
     deadline = time.time() + 300
@@ -142,16 +142,18 @@ def test_truncated_checkpoint_is_skipped_for_the_previous_one(tmp_path, uninterr
     assert_same_observables(uninterrupted, rows(run_dir))
 
 
-def test_two_ranks_restarted_on_one(tmp_path):
-    """2 ranks to step 20, then 1 rank to the end, against 2 ranks in one go."""
+def test_two_ranks_stopped_by_sigusr1_restarted_on_one(tmp_path):
+    """2 ranks stopped through mpirun (which forwards SIGUSR1 to every rank), then 1 rank
+    to the end, against 2 ranks in one go."""
     full_dir, part_dir = tmp_path / "full", tmp_path / "part"
-    full = write_scene(vesicle_scene(), tmp_path, full_dir)
-    part = write_scene(vesicle_scene(end_time=20e-3), tmp_path, part_dir)
-    assert cellphase(["run", full], ranks=2).returncode == 0
-    assert cellphase(["run", part], ranks=2).returncode == 0
-    proc = cellphase(["run", full, "--restart", part_dir])
+    full_path = write_scene(vesicle_scene(), tmp_path, full_dir)
+    part_path = write_scene(vesicle_scene(), tmp_path, part_dir)
+    assert cellphase(["run", full_path], ranks=2).returncode == 0
+    code, out, err = start_and_stop(part_path, part_dir, signal.SIGUSR1, after_rows=8, ranks=2)
+    assert code == 5 and "stopped by SIGUSR1" in out, out + err
+    proc = cellphase(["run", part_path, "--restart", part_dir])
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert "restarting from" in proc.stdout and "(step 20," in proc.stdout
+    assert "restarting from" in proc.stdout
     a, b = rows(full_dir), rows(part_dir)
     assert [r["dofs"] for r in a] == [r["dofs"] for r in b]  # the same meshes
     assert_same_observables(a, b, rel=1e-9)
