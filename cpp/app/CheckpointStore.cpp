@@ -1,4 +1,5 @@
 #include "app/CheckpointStore.h"
+#include "util/Mpi.h"
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -9,13 +10,6 @@ namespace cellphase
 namespace fs = std::filesystem;
 namespace
 {
-int rank_of(MPI_Comm comm)
-{
-  int r;
-  MPI_Comm_rank(comm, &r);
-  return r;
-}
-
 /// Checkpoint files of dir, newest (highest step) first. Temporary files are not listed.
 std::vector<fs::path> list_checkpoints(const std::string& dir)
 {

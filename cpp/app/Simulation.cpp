@@ -1,4 +1,5 @@
 #include "app/Simulation.h"
+#include "util/Mpi.h"
 #include "app/StopSignal.h"
 #include "io/FieldSnapshot.h"
 #include "io/Progress.h"
@@ -15,13 +16,6 @@ namespace cellphase
 {
 namespace
 {
-int rank_of(MPI_Comm comm)
-{
-  int r;
-  MPI_Comm_rank(comm, &r);
-  return r;
-}
-
 std::string format(const char* fmt, ...)
 {
   char buf[1024];

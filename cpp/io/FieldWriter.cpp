@@ -1,4 +1,5 @@
 #include "io/FieldWriter.h"
+#include "util/Mpi.h"
 #include <basix/finite-element.h>
 #include <cstdio>
 #include <dolfinx/io/XDMFFile.h>
@@ -13,13 +14,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-int rank_of(MPI_Comm comm)
-{
-  int r;
-  MPI_Comm_rank(comm, &r);
-  return r;
-}
-
 std::string numbered(const char* stem, int step)
 {
   char buf[64];
