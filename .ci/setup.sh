@@ -7,6 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(
   cmake g++ make pkg-config
   libdolfinx-dev python3-ffcx          # DOLFINx 0.5 (PETSc with MUMPS, Open MPI, HDF5), FFCx
+  libdolfinx-mpc-dev                   # dolfinx_mpc 0.5: periodic boundary conditions
   libyaml-cpp-dev libmuparser-dev      # scene files, signed-distance expressions
   libgtest-dev                         # C++ tests
   python3-pytest python3-yaml python3-numpy python3-matplotlib python3-h5py  # tests, plots

@@ -1,0 +1,168 @@
+#include "compat/Periodic.h"
+// dolfinx_mpc 0.5 headers: PeriodicConstraint.h has no include guard and lifting.h defines
+// non-inline functions, so both may be included by this file only. The umbrella header
+// dolfinx_mpc.h is unusable (it includes <utils.h> & co. without the folder name).
+#include <dolfinx_mpc/MultiPointConstraint.h>
+#include <dolfinx_mpc/PeriodicConstraint.h>
+#include <dolfinx_mpc/assemble_matrix.h>
+#include <dolfinx_mpc/assemble_vector.h>
+#include <dolfinx_mpc/lifting.h>
+#include <dolfinx_mpc/utils.h>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace cellphase
+{
+using namespace dolfinx;
+
+namespace
+{
+/// The scalar pieces of a space: dolfinx_mpc 0.5 makes only scalar spaces periodic
+/// ("not implemented for vector valued spaces"), so vectors go component by component.
+void scalar_subspaces(std::shared_ptr<const Space> V, std::vector<std::shared_ptr<const Space>>& out)
+{
+  const auto& e = *V->element();
+  if (e.is_mixed())
+    for (int i = 0; i < e.num_sub_elements(); ++i)
+      scalar_subspaces(V->sub({i}), out);
+  else if (e.block_size() > 1)
+    for (int i = 0; i < e.block_size(); ++i)
+      out.push_back(V->sub({i}));
+  else
+    out.push_back(V);
+}
+
+/// Appends one constraint's data to the union of all (offsets shifted past earlier masters).
+void append(dolfinx_mpc::mpc_data& all, const dolfinx_mpc::mpc_data& d)
+{
+  const std::int32_t shift = all.masters.size();
+  all.slaves.insert(all.slaves.end(), d.slaves.begin(), d.slaves.end());
+  all.masters.insert(all.masters.end(), d.masters.begin(), d.masters.end());
+  all.coeffs.insert(all.coeffs.end(), d.coeffs.begin(), d.coeffs.end());
+  all.owners.insert(all.owners.end(), d.owners.begin(), d.owners.end());
+  for (std::size_t i = 1; i < d.offsets.size(); ++i)
+    all.offsets.push_back(d.offsets[i] + shift);
+}
+} // namespace
+
+PeriodicConstraint::PeriodicConstraint(std::shared_ptr<const Space> V,
+                                       const std::array<double, 3>& lower,
+                                       const std::array<double, 3>& upper,
+                                       const std::vector<int>& axes, const BCs& bcs)
+    : V_(V)
+{
+  if (axes.empty())
+    return;
+  const int gdim = V->mesh()->geometry().dim();
+  for (int a : axes)
+    if (a < 0 || a >= gdim)
+      throw std::runtime_error("periodic axis " + std::to_string(a) + " outside the mesh dimension");
+
+  // One relation for all axes: every coordinate on a max face moves to the min face.
+  // A dof on several max faces (an edge or corner) then maps straight to the corner on
+  // the min faces, which is no slave, so no master is itself a slave.
+  double tol = 0;
+  for (int a : axes)
+    tol = std::max(tol, 1e-8 * (upper[a] - lower[a]));
+  auto on_max = [=](double x, int a) { return std::abs(x - upper[a]) < tol; };
+  auto indicator = [=](const xt::xtensor<double, 2>& x)
+  {
+    xt::xtensor<bool, 1> marked = xt::zeros<bool>({x.shape(1)});
+    for (std::size_t i = 0; i < x.shape(1); ++i)
+      for (int a : axes)
+        marked(i) = marked(i) || on_max(x(a, i), a);
+    return marked;
+  };
+  auto relation = [=](const xt::xtensor<double, 2>& x)
+  {
+    xt::xarray<double> y = x;
+    for (std::size_t i = 0; i < x.shape(1); ++i)
+      for (int a : axes)
+        if (on_max(x(a, i), a))
+          y(a, i) = lower[a];
+    return y;
+  };
+
+  std::vector<std::shared_ptr<const Space>> pieces;
+  scalar_subspaces(V, pieces);
+  dolfinx_mpc::mpc_data all;
+  all.offsets = {0};
+  for (const auto& piece : pieces)
+  {
+    // collapse = true for sub-spaces: dofs are located in the collapsed space and
+    // returned in the numbering of the root space.
+    const bool sub = piece.get() != V.get();
+    append(all, dolfinx_mpc::create_periodic_condition_geometrical(piece, indicator, relation,
+                                                                   bcs, 1.0, sub));
+  }
+  mpc_ = std::make_shared<dolfinx_mpc::MultiPointConstraint<T>>(V, all.slaves, all.masters,
+                                                                all.coeffs, all.owners, all.offsets);
+  std::int64_t local = mpc_->num_local_slaves();
+  MPI_Allreduce(&local, &num_slaves_, 1, MPI_INT64_T, MPI_SUM, V->mesh()->comm());
+}
+
+PeriodicConstraint::~PeriodicConstraint() = default;
+
+la::petsc::Matrix PeriodicConstraint::create_matrix(const Form& a) const
+{
+  if (mpc_)
+    return dolfinx_mpc::create_matrix(a, mpc_);
+  return la::petsc::Matrix(fem::petsc::create_matrix(a), false);
+}
+
+void PeriodicConstraint::assemble_matrix(Mat A, const Form& a, const BCs& bcs) const
+{
+  MatZeroEntries(A);
+  auto add_block = la::petsc::Matrix::set_block_fn(A, ADD_VALUES);
+  auto add = la::petsc::Matrix::set_fn(A, ADD_VALUES);
+  if (mpc_)
+    // Puts 1 on the diagonal of the (owned) slave rows itself.
+    dolfinx_mpc::assemble_matrix(add_block, add, a, mpc_, mpc_, bcs, 1.0);
+  else
+    fem::assemble_matrix(add_block, a, bcs);
+  // BC rows and columns were skipped above, so ADD of the diagonal needs no flush.
+  fem::set_diagonal<T>(add, *V_, bcs);
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+}
+
+la::Vector<T> PeriodicConstraint::create_vector() const
+{
+  // The constrained space has the same owned dofs; its ghosts add the remote masters.
+  auto map = mpc_ ? mpc_->function_space()->dofmap()->index_map : V_->dofmap()->index_map;
+  return la::Vector<T>(map, V_->dofmap()->index_map_bs());
+}
+
+void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
+                                         std::shared_ptr<const Form> a, const BCs& bcs) const
+{
+  b.set(0.0);
+  if (mpc_)
+  {
+    dolfinx_mpc::assemble_vector(b.mutable_array(), L, mpc_);
+    dolfinx_mpc::apply_lifting(b.mutable_array(), {a}, {bcs}, {}, 1.0, mpc_);
+  }
+  else
+  {
+    fem::assemble_vector(b.mutable_array(), L);
+    fem::apply_lifting<T>(b.mutable_array(), {a}, {bcs}, {}, 1.0);
+  }
+  b.scatter_rev(std::plus<T>());
+  fem::set_bc<T>(b.mutable_array(), bcs);
+}
+
+void PeriodicConstraint::backsubstitute(la::Vector<T>& x, Function& u) const
+{
+  if (mpc_)
+  {
+    x.scatter_fwd(); // masters owned elsewhere are ghosts of x
+    // backsubstitution adds to the slave value, so start from zero.
+    mpc_->homogenize(x.mutable_array());
+    mpc_->backsubstitution(x.mutable_array());
+  }
+  // The constrained index map extends V's ghosts at the end: V's part is a prefix.
+  auto out = u.x()->mutable_array();
+  std::copy_n(x.array().begin(), out.size(), out.begin());
+}
+} // namespace cellphase
