@@ -1,5 +1,5 @@
 # Taylor-Hood Stokes flow in the unit-square channel, periodic in x, no-slip at y = 0, 1:
-#   -nu Lap u + grad p = f,  div u = 0,  f = (1, beta sin(2 pi x) sin(pi y)).
+#   -nu Lap u + grad p = f,  div u = 0,  f = (1, beta sin(2 pi x + 0.5) sin(pi y)).
 # For beta = 0 the solution is the parabola u = (y (1 - y) / (2 nu), 0), p = const, which
 # P2 contains, so the discrete velocity equals it to round-off.
 from ufl import (Coefficient, FiniteElement, FunctionSpace, MixedElement, SpatialCoordinate,
@@ -13,7 +13,7 @@ Wsp = FunctionSpace(domain, MixedElement([VectorElement("Lagrange", cell, 2),
 (u, p), (v, q) = TrialFunctions(Wsp), TestFunctions(Wsp)
 nu, beta = constants("nu", "beta")
 xc = SpatialCoordinate(domain)
-f = as_vector((1.0, beta * sin(2 * pi * xc[0]) * sin(pi * xc[1])))
+f = as_vector((1.0, beta * sin(2 * pi * xc[0] + 0.5) * sin(pi * xc[1])))
 
 a = (nu * inner(grad(u), grad(v)) - p * div(v) - q * div(u)) * dx
 L = inner(f, v) * dx(metadata={"quadrature_degree": 6})
