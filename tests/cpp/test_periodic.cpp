@@ -1,6 +1,8 @@
-// Periodic boundary conditions (compat/Periodic.h, dolfinx_mpc) on the unit square, P2:
+// Periodic boundary conditions (compat/Periodic.h, dolfinx_mpc) with P2 manufactured solutions:
 //  - -Lap u = f periodic in x with Dirichlet data at y = 0, 1, and -Lap u + u = f periodic
-//    in x and y: L2 errors fall at order 3, left/right (bottom/top) values agree to round-off;
+//    in x and y (also on tetrahedra in x, y, z, and for a P2 vector field): L2 errors fall
+//    at order 3, values on opposite faces agree to round-off;
+//  - the same on meshes refined next to one periodic face only (non-matching faces);
 //  - a mixed P2 pair (u - dt Lap w = f, w = -Lap u + u) periodic in x and y, so that the
 //    constraint acts on sub-spaces;
 //  - Taylor-Hood Stokes flow in a channel periodic in x: the parabola to round-off.
@@ -11,6 +13,7 @@
 #include "periodic_poisson.h"
 #include "periodic_poisson_3d.h"
 #include "periodic_stokes.h"
+#include "periodic_vector.h"
 #include "solve/LinearSolver.h"
 #include <cmath>
 #include <map>
@@ -282,6 +285,33 @@ TEST(Periodic, NonMatchingFacesNextToDirichletFaceAreRefused)
   BCs bcs{std::make_shared<DirichletBC>(
       g, dolfinx::fem::locate_dofs_topological(*V, 1, std::span<const std::int32_t>(facets)))};
   EXPECT_THROW(PeriodicConstraint(V, lower, upper, {0}, bcs), std::runtime_error);
+}
+
+TEST(Periodic, VectorSpaceComponentsArePeriodic)
+{
+  // A blocked space (dofmap block size 2): its slaves are unrolled dofs.
+  std::vector<double> errors;
+  for (int n : ns)
+  {
+    auto mesh = unit_square(n);
+    auto V = compat::create_space(functionspace_form_periodic_vector_a, "u", mesh);
+    PeriodicConstraint pc(V, lower, upper, {0, 1});
+    EXPECT_EQ(pc.num_slaves(), 2 * (4 * n + 1));
+    auto a = compat::create_form(*form_periodic_vector_a, {V, V}, {}, {});
+    auto L = compat::create_form(*form_periodic_vector_L, {V}, {}, {});
+    auto uh = solve(pc, V, a, *L, {});
+    errors.push_back(std::sqrt(compat::assemble_scalar(
+        *compat::create_form(*form_periodic_vector_error, {}, {{"uh", uh}}, {}, mesh))));
+    for (int k : {0, 1})
+    {
+      const Function component = uh->sub(k).collapse();
+      const double jx = periodic_jump(component, 0).jump, jy = periodic_jump(component, 1).jump;
+      std::printf("  n = %2d, u_%d: jump left/right %.1e, bottom/top %.1e\n", n, k, jx, jy);
+      EXPECT_LT(jx, 1e-12);
+      EXPECT_LT(jy, 1e-12);
+    }
+  }
+  expect_rate_3(errors, "vector");
 }
 
 TEST(Periodic, MixedSpaceSubspacesArePeriodic)
