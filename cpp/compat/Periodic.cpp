@@ -114,9 +114,27 @@ PeriodicConstraint::PeriodicConstraint(std::shared_ptr<const Space> V,
     periodic::append(all, dolfinx_mpc::create_periodic_condition_geometrical(
                               piece, unmatched_min, to_max, bcs, 1.0, sub));
   }
-  all = periodic::resolve_chains(*V, all, bcs);
+  auto resolved = periodic::resolve_chains(*V, all, bcs);
+  all = std::move(resolved.data);
   mpc_ = std::make_shared<dolfinx_mpc::MultiPointConstraint<T>>(V, all.slaves, all.masters,
                                                                 all.coeffs, all.owners, all.offsets);
+  constants_ = std::move(resolved.constants);
+  int any_constants = !constants_.empty();
+  MPI_Allreduce(MPI_IN_PLACE, &any_constants, 1, MPI_INT, MPI_MAX, V->mesh()->comm());
+  if (any_constants)
+  {
+    // The constants enter the right-hand side like Dirichlet values on the slave columns
+    // (lifting: b -= K^T A r), and the solution in backsubstitute. Created on all ranks:
+    // a Function's vector sets up a neighbourhood communicator (collective).
+    auto r = std::make_shared<Function>(V);
+    r->x()->set(0.0);
+    std::vector<std::int32_t> dofs;
+    for (auto [slave, value] : constants_)
+      r->x()->mutable_array()[slave] = value, dofs.push_back(slave);
+    std::sort(dofs.begin(), dofs.end());
+    constants_lift_ = std::make_shared<const DirichletBC>(
+        r, std::array<std::vector<std::int32_t>, 2>{dofs, dofs}, V);
+  }
   std::int64_t local = mpc_->num_local_slaves();
   MPI_Allreduce(&local, &num_slaves_, 1, MPI_INT64_T, MPI_SUM, V->mesh()->comm());
 }
@@ -160,7 +178,10 @@ void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
   if (mpc_)
   {
     dolfinx_mpc::assemble_vector(b.mutable_array(), L, mpc_);
-    dolfinx_mpc::apply_lifting(b.mutable_array(), {a}, {bcs}, {}, 1.0, mpc_);
+    BCs lifted = bcs;
+    if (constants_lift_)
+      lifted.push_back(constants_lift_);
+    dolfinx_mpc::apply_lifting(b.mutable_array(), {a}, {lifted}, {}, 1.0, mpc_);
   }
   else
   {
@@ -179,6 +200,8 @@ void PeriodicConstraint::backsubstitute(la::Vector<T>& x, Function& u) const
     // backsubstitution adds to the slave value, so start from zero.
     mpc_->homogenize(x.mutable_array());
     mpc_->backsubstitution(x.mutable_array());
+    for (auto [slave, value] : constants_)
+      x.mutable_array()[slave] += value;
   }
   // The constrained index map extends V's ghosts at the end: V's part is a prefix.
   auto out = u.x()->mutable_array();

@@ -21,7 +21,10 @@ class PeriodicConstraint
 public:
   /// V: the root space of the system (scalar, vector, mixed of those, e.g. Taylor-Hood).
   /// Every scalar component of every sub-space is made periodic along `axes` (0, 1, 2 =
-  /// x, y, z) of the box [lower, upper]. Dofs of `bcs` stay Dirichlet dofs, not slaves.
+  /// x, y, z) of the box [lower, upper]. Dofs of `bcs` stay Dirichlet dofs, not slaves;
+  /// pass the same bcs to the assembly. Their current values are also used where the
+  /// faces do not match next to a Dirichlet face (a constant part of a slave). The faces
+  /// may be refined differently. Collective.
   PeriodicConstraint(std::shared_ptr<const Space> V, const std::array<double, 3>& lower,
                      const std::array<double, 3>& upper, const std::vector<int>& axes,
                      const BCs& bcs = {});
@@ -49,6 +52,10 @@ public:
 private:
   std::shared_ptr<const Space> V_;
   std::shared_ptr<dolfinx_mpc::MultiPointConstraint<T>> mpc_;
+  /// Slaves with Dirichlet masters: u_s = sum c u_m + constant (local slave, constant), and
+  /// the constants as a Dirichlet condition on those slaves for the lifting.
+  std::vector<std::pair<std::int32_t, T>> constants_;
+  std::shared_ptr<const DirichletBC> constants_lift_;
   std::int64_t num_slaves_ = 0;
 };
 } // namespace cellphase

@@ -4,7 +4,7 @@
 #include <map>
 #include <numeric>
 #include <stdexcept>
-#include <unordered_set>
+#include <unordered_map>
 #include <xtensor/xadapt.hpp>
 #include <xtensor/xview.hpp>
 
@@ -84,17 +84,12 @@ std::set<PointKey> max_face_points(
   return keys;
 }
 
-/// dolfinx_mpc 0.5 assumes masters are free dofs, which fails where the two faces do not
-/// match (after local refinement): a slave point may fall in a cell of the min face whose
-/// dofs include a slave of another axis (near an edge/corner) or a Dirichlet dof.
-/// Masters that are slaves are replaced by their own masters (all ranks' slaves are
-/// gathered; they live on the boundary only). A Dirichlet master would need an
-/// inhomogeneous constraint, which dolfinx_mpc 0.5 lacks: that is an error.
-dolfinx_mpc::mpc_data resolve_chains(const Space& V, const dolfinx_mpc::mpc_data& d,
-                                     const BCs& bcs)
+Resolved resolve_chains(const Space& V, const dolfinx_mpc::mpc_data& d, const BCs& bcs)
 {
   MPI_Comm comm = V.mesh()->comm();
-  const std::int32_t num_owned = V.dofmap()->index_map->size_local() * V.dofmap()->index_map_bs();
+  const int bs = V.dofmap()->index_map_bs();
+  const std::int32_t num_owned = V.dofmap()->index_map->size_local() * bs;
+  const std::int32_t num_local = num_owned + V.dofmap()->index_map->num_ghosts() * bs;
   const auto slaves_global = to_global(V, d.slaves);
   // Owned slaves of all ranks as (slave, n, masters, owners) and their coefficients.
   std::vector<std::int64_t> ints;
@@ -107,7 +102,8 @@ dolfinx_mpc::mpc_data resolve_chains(const Space& V, const dolfinx_mpc::mpc_data
     ints.push_back(d.offsets[i + 1] - d.offsets[i]);
     for (auto k = d.offsets[i]; k < d.offsets[i + 1]; ++k)
       ints.insert(ints.end(), {d.masters[k], std::int64_t(d.owners[k])});
-    coeffs.insert(coeffs.end(), d.coeffs.begin() + d.offsets[i], d.coeffs.begin() + d.offsets[i + 1]);
+    coeffs.insert(coeffs.end(), d.coeffs.begin() + d.offsets[i],
+                  d.coeffs.begin() + d.offsets[i + 1]);
   }
   struct Term
   {
@@ -129,65 +125,77 @@ dolfinx_mpc::mpc_data resolve_chains(const Space& V, const dolfinx_mpc::mpc_data
         terms.push_back({all_ints[k], all_coeffs[c++], std::int32_t(all_ints[k + 1])});
     }
   }
-  std::unordered_set<std::int64_t> bc_dofs;
+  // Dirichlet dofs of all ranks with their values (boundary only).
+  std::unordered_map<std::int64_t, T> bc_values;
   {
-    std::vector<std::int8_t> marker(num_owned + V.dofmap()->index_map->num_ghosts()
-                                                    * V.dofmap()->index_map_bs(), 0);
+    std::vector<std::int8_t> marker(num_local, 0);
+    std::vector<T> values(num_local, 0);
     for (const auto& bc : bcs)
+    {
       bc->mark_dofs(marker);
+      bc->dof_values(values);
+    }
     std::vector<std::int32_t> owned_bc;
+    std::vector<T> owned_values;
     for (std::int32_t i = 0; i < num_owned; ++i)
       if (marker[i])
-        owned_bc.push_back(i);
-    for (auto g : all_gather(to_global(V, owned_bc), comm))
-      bc_dofs.insert(g);
+        owned_bc.push_back(i), owned_values.push_back(values[i]);
+    const auto all_dofs = all_gather(to_global(V, owned_bc), comm);
+    const auto all_values = all_gather(owned_values, comm);
+    for (std::size_t k = 0; k < all_dofs.size(); ++k)
+      bc_values[all_dofs[k]] = all_values[k];
   }
 
-  dolfinx_mpc::mpc_data out;
-  out.slaves = d.slaves;
-  out.offsets = {0};
+  Resolved out;
+  out.data.slaves = d.slaves;
+  out.data.offsets = {0};
   std::vector<Term> terms;
-  // Failures are collected and raised on all ranks together: the constructor that
-  // follows is collective.
-  int failure[2] = {0, 0}; // a Dirichlet master; a chain that does not end
+  T constant = 0;
+  bool has_constant = false;
+  bool cycle = false;
   std::function<void(const Term&, int)> expand = [&](const Term& t, int depth)
   {
-    auto it = table.find(t.master);
-    if (it == table.end())
+    if (auto it = table.find(t.master); it != table.end())
     {
-      failure[0] |= int(bc_dofs.count(t.master) > 0);
-      auto same = std::find_if(terms.begin(), terms.end(),
-                               [&](const Term& u) { return u.master == t.master; });
-      if (same != terms.end())
-        same->coeff += t.coeff;
+      if (depth > 3)
+        cycle = true;
       else
-        terms.push_back(t);
+        for (const auto& u : it->second)
+          expand({u.master, t.coeff * u.coeff, u.owner}, depth + 1);
     }
-    else if (depth > 3)
-      failure[1] = 1;
+    else if (auto bc = bc_values.find(t.master); bc != bc_values.end())
+    {
+      constant += t.coeff * bc->second;
+      has_constant = true;
+    }
+    else if (auto same = std::find_if(terms.begin(), terms.end(),
+                                      [&](const Term& u) { return u.master == t.master; });
+             same != terms.end())
+      same->coeff += t.coeff;
     else
-      for (const auto& u : it->second)
-        expand({u.master, t.coeff * u.coeff, u.owner}, depth + 1);
+      terms.push_back(t);
   };
   for (std::size_t i = 0; i < d.slaves.size(); ++i)
   {
     terms.clear();
+    constant = 0;
+    has_constant = false;
     for (auto k = d.offsets[i]; k < d.offsets[i + 1]; ++k)
       expand({d.masters[k], d.coeffs[k], d.owners[k]}, 0);
     for (const auto& t : terms)
     {
-      out.masters.push_back(t.master);
-      out.coeffs.push_back(t.coeff);
-      out.owners.push_back(t.owner);
+      out.data.masters.push_back(t.master);
+      out.data.coeffs.push_back(t.coeff);
+      out.data.owners.push_back(t.owner);
     }
-    out.offsets.push_back(out.masters.size());
+    out.data.offsets.push_back(out.data.masters.size());
+    if (has_constant)
+      out.constants.emplace_back(d.slaves[i], constant);
   }
-  MPI_Allreduce(MPI_IN_PLACE, failure, 2, MPI_INT, MPI_MAX, comm);
-  if (failure[0])
-    throw std::runtime_error(
-        "periodic constraint: a slave depends on a Dirichlet dof (the periodic faces are "
-        "refined differently next to a Dirichlet face), which dolfinx_mpc 0.5 cannot express");
-  if (failure[1])
+  // Raised on all ranks together: the constructor that follows is collective.
+  int failed = cycle;
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm);
+  if (failed)
     throw std::runtime_error("periodic constraint: a slave-master chain does not end");
   return out;
 }

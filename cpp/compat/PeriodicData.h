@@ -24,8 +24,15 @@ std::set<PointKey> max_face_points(
     const std::function<xt::xtensor<bool, 1>(const xt::xtensor<double, 2>&)>& max_face,
     double tol);
 
-/// The data with every master that is itself a slave replaced by its own masters; throws
-/// (on all ranks) if a master is a Dirichlet dof of bcs.
-dolfinx_mpc::mpc_data resolve_chains(const Space& V, const dolfinx_mpc::mpc_data& d,
-                                     const BCs& bcs);
+/// dolfinx_mpc 0.5 assumes that masters are free dofs. Where the two faces do not match
+/// (local refinement), a slave point can fall in a cell of the min face with a slave dof of
+/// another axis (near an edge or corner) or a Dirichlet dof. Masters that are slaves are
+/// replaced by their own masters; Dirichlet masters (values as in bcs now) leave the
+/// master list and add a constant to the slave: u_s = sum c_m u_m + constant.
+struct Resolved
+{
+  dolfinx_mpc::mpc_data data;
+  std::vector<std::pair<std::int32_t, T>> constants; ///< (local slave, constant)
+};
+Resolved resolve_chains(const Space& V, const dolfinx_mpc::mpc_data& d, const BCs& bcs);
 } // namespace cellphase::periodic
