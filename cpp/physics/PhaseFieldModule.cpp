@@ -116,7 +116,10 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   b_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
   x_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
   for (auto& load : loads_)
+  {
     load.x = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+    load.b = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+  }
 
   if (forms_.a_mu && fields.find("mu") == fields.end())
     compute_mu_from_phi();
@@ -143,9 +146,9 @@ void PhaseFieldModule::bind_forms()
     const auto& pf = scene_.phase_field;
     if (forms_.load_v)
       loads_.push_back({UnitLoad::volume, compat::create_form(*forms_.load_v, {W_}, coeffs, constants_),
-                        nullptr, lam_v_, pf.penalty_volume});
+                        nullptr, nullptr, lam_v_, pf.penalty_volume});
     loads_.push_back({UnitLoad::area, compat::create_form(*forms_.load_a, {W_}, coeffs, constants_),
-                      nullptr, lam_a_, pf.penalty_area});
+                      nullptr, nullptr, lam_a_, pf.penalty_area});
     // phi^n is the linearisation point of E_CH: bound to the standalone field, which
     // holds phi^n until the step is complete.
     volume_weights_form_ = compat::create_form(*obs.volume_weights, {V_}, {}, constants_);
@@ -217,7 +220,8 @@ double PhaseFieldModule::phi_dot(const la::Vector<T>& weights, const la::Vector<
   return sum;
 }
 
-void PhaseFieldModule::apply_constraint_loads()
+void PhaseFieldModule::assemble_constraint_loads(std::vector<const la::Vector<T>*>& rhs,
+                                                 std::vector<la::Vector<T>*>& solutions)
 {
   // Unit loads are homogeneous at Dirichlet rows (scale 0): phi^{n+1} keeps its BC value.
   for (auto& load : loads_)
@@ -227,12 +231,17 @@ void PhaseFieldModule::apply_constraint_loads()
     if (load.kind == UnitLoad::volume && load.current)
       continue;
     load.current = true;
-    b_->set(0.0);
-    fem::assemble_vector(b_->mutable_array(), *load.form);
-    b_->scatter_rev(std::plus<T>());
-    fem::set_bc<T>(b_->mutable_array(), bcs_, 0.0);
-    solver_->solve(*b_, *load.x, "the constraint loads of the phase field");
+    load.b->set(0.0);
+    fem::assemble_vector(load.b->mutable_array(), *load.form);
+    load.b->scatter_rev(std::plus<T>());
+    fem::set_bc<T>(load.b->mutable_array(), bcs_, 0.0);
+    rhs.push_back(load.b.get());
+    solutions.push_back(load.x.get());
   }
+}
+
+void PhaseFieldModule::apply_constraint_loads()
+{
   // phi^{n+1} = phi_0 + sum_j m_j phi_j. Its volume (3.10) is linear in m, its area
   // (3.11) is linearised about phi^n: A = A(phi^n) + dA[phi_0 - phi^n] + sum_j m_j dA[phi_j].
   const std::size_t K = loads_.size();
@@ -334,8 +343,14 @@ StepTimings PhaseFieldModule::step(double dt)
       load.current = false;
     matrix_current_ = true;
   }
+  std::vector<const la::Vector<T>*> rhs{b_.get()};
+  std::vector<la::Vector<T>*> solutions{x_.get()};
   auto t1 = Clock::now();
-  solver_->solve(*b_, *x_, std::string("phase field (") + scene::to_string(scene_.phase_field.model) + ")");
+  assemble_constraint_loads(rhs, solutions);
+  t.assemble += seconds_since(t1);
+  t1 = Clock::now();
+  solver_->solve(rhs, solutions,
+                 std::string("phase field (") + scene::to_string(scene_.phase_field.model) + ")");
   if (!loads_.empty())
     apply_constraint_loads();
   scatter_state();

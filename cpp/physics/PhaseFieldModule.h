@@ -54,9 +54,13 @@ private:
   void bind_forms();
   void compute_mu_from_phi();
   void update_multipliers(double dt);
-  /// Helfrich models: solve for the unit loads and add them with the multipliers that
-  /// hold the constraints at t^{n+1} (helfrich_lagrange) or with the penalties evaluated
-  /// at t^{n+1} (helfrich_penalty, helfrich_hm1), E_CH linearised about phi^n.
+  /// Assemble the unit loads whose solutions are not current: they are solved together
+  /// with the step's own right-hand side.
+  void assemble_constraint_loads(std::vector<const dolfinx::la::Vector<T>*>& rhs,
+                                 std::vector<dolfinx::la::Vector<T>*>& solutions);
+  /// Helfrich models: add the unit-load solutions with the multipliers that hold the
+  /// constraints at t^{n+1} (helfrich_lagrange) or with the penalties evaluated at t^{n+1}
+  /// (helfrich_penalty, helfrich_hm1), E_CH linearised about phi^n.
   void apply_constraint_loads();
   void gather_state();   ///< standalone fields -> mixed vector u0
   void scatter_state();  ///< mixed solution -> standalone fields
@@ -82,7 +86,7 @@ private:
   {
     enum Kind { volume, area } kind;
     std::shared_ptr<Form> form;
-    std::unique_ptr<dolfinx::la::Vector<T>> x;
+    std::unique_ptr<dolfinx::la::Vector<T>> x, b;
     std::shared_ptr<Constant> value;
     double penalty;       ///< p1 or p2 (penalty models)
     bool current = false; ///< x solves the current matrix (the volume load is constant)

@@ -1,5 +1,6 @@
 #include "solve/LinearSolver.h"
 #include "util/Clock.h"
+#include <algorithm>
 
 namespace cellphase
 {
@@ -45,5 +46,45 @@ void LinearSolver::solve(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>
                       + std::to_string(int(reason)) + ", PETSc error " + std::to_string(int(ierr))
                       + ")");
   x.scatter_fwd();
+}
+
+void LinearSolver::solve(const std::vector<const dolfinx::la::Vector<T>*>& bs,
+                         const std::vector<dolfinx::la::Vector<T>*>& xs, const std::string& what)
+{
+  if (bs.size() == 1)
+    return solve(*bs[0], *xs[0], what);
+  // Owned entries of every right-hand side as the columns of a dense matrix.
+  const auto& map = *bs[0]->map();
+  const int bs_ = bs[0]->bs();
+  const PetscInt n = map.size_local() * bs_, N = map.size_global() * bs_;
+  const PetscInt k = PetscInt(bs.size());
+  MPI_Comm comm = map.comm();
+  Mat B, X;
+  MatCreateDense(comm, n, PETSC_DECIDE, N, k, nullptr, &B);
+  MatCreateDense(comm, n, PETSC_DECIDE, N, k, nullptr, &X);
+  PetscScalar* col;
+  MatDenseGetArrayWrite(B, &col);
+  for (PetscInt j = 0; j < k; ++j)
+    std::copy_n(bs[j]->array().begin(), n, col + j * n);
+  MatDenseRestoreArrayWrite(B, &col);
+  const PetscErrorCode ierr = KSPMatSolve(ksp_, B, X);
+  KSPConvergedReason reason;
+  KSPGetConvergedReason(ksp_, &reason);
+  if (ierr == 0 && reason >= 0)
+  {
+    const PetscScalar* out;
+    MatDenseGetArrayRead(X, &out);
+    for (PetscInt j = 0; j < k; ++j)
+      std::copy_n(out + j * n, n, xs[j]->mutable_array().begin());
+    MatDenseRestoreArrayRead(X, &out);
+  }
+  MatDestroy(&B);
+  MatDestroy(&X);
+  if (ierr != 0 || reason < 0)
+    throw SolverError("linear solver of " + what + " did not converge (KSP reason "
+                      + std::to_string(int(reason)) + ", PETSc error " + std::to_string(int(ierr))
+                      + ")");
+  for (auto* x : xs)
+    x->scatter_fwd();
 }
 } // namespace cellphase

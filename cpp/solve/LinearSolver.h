@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace cellphase
 {
@@ -28,6 +29,10 @@ public:
   double set_operator(Mat A);
   /// x = A^-1 b with the last factorisation; throws SolverError naming `what` on failure.
   void solve(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>& x, const std::string& what);
+  /// xs[i] = A^-1 bs[i] for all i in one call: a direct solver sweeps its factors once
+  /// for all right-hand sides (BLAS-3), which is cheaper than one solve after the other.
+  void solve(const std::vector<const dolfinx::la::Vector<T>*>& bs,
+             const std::vector<dolfinx::la::Vector<T>*>& xs, const std::string& what);
 
 private:
   KSP ksp_ = nullptr;
