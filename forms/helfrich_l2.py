@@ -7,7 +7,8 @@
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
-from cellphase_ufl import (P2, QDEG, constants, dddW0, ddW0, domain, dW0, kappa_of, mixed)
+from cellphase_ufl import (P2, QDEG, advection, constants, dddW0, ddW0, domain, dW0,
+                           kappa_of, mixed, velocity)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -18,10 +19,12 @@ dt, eps, gamma, Be, H0, S, lam_v, lam_a = constants(
 dxq = dx(metadata={"quadrature_degree": QDEG})
 g = gamma / Be
 kappa0 = kappa_of(phi0, mu0, H0)
+v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
 
 # Linear part shared by both time discretisations (Lap mu integrated by parts)
 common = (phi * psi / dt - g * inner(grad(mu), grad(psi))
-          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx
+          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
+    + advection(phi, psi, v) * dxq  # v . grad phi of (3.61) / (3.83)
 rhs_common = phi0 * psi / dt * dx - g * (lam_v + lam_a * kappa0) * psi * dxq
 
 # Taylor linearisation (section 5.3):

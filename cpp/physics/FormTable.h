@@ -13,7 +13,9 @@ struct ModelForms
   ufcx_form* L = nullptr;
   ufcx_form* a_stab = nullptr;   ///< stabilised matrix (constant between remeshes)
   ufcx_form* L_stab = nullptr;
-  ufcx_space_fn space = nullptr; ///< space of the state coefficient "u0" of `a`
+  ufcx_space_fn space = nullptr; ///< space of the state coefficient "u0" of `a`, and of
+                                 ///< the advection velocity "v" (models with one)
+  bool advected = false;         ///< `a` has the advection term with coefficient "v"
   // Initial mu as the L2 projection of (3.23) (Helfrich models)
   ufcx_form* a_mu = nullptr;
   ufcx_form* L_mu = nullptr;
@@ -33,6 +35,8 @@ struct ObservableForms
   ufcx_form* volume_weights = nullptr; ///< int q: volume of a P2 function as a dot product
   ufcx_form* area_weights = nullptr;   ///< int kappa(phi) q: first variation of E_CH
   std::array<ufcx_form*, 3> com{nullptr, nullptr, nullptr};
+  /// int phi~ x x, int phi~ x y, int phi~ y y (inclination of a 2D cell)
+  std::array<ufcx_form*, 3> moments{nullptr, nullptr, nullptr};
   ufcx_space_fn p2_space = nullptr; ///< scalar P2 (coefficient "phi")
 };
 

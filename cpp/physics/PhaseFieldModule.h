@@ -35,6 +35,12 @@ public:
   /// Build spaces, forms and solver on a (new) mesh. `fields` holds phi and, if known,
   /// the other fields of the model on the P2 space V; missing ones are computed from phi.
   void attach(std::shared_ptr<Space> V, FieldMap fields);
+  /// Advect phi with this velocity (vector P2 on the current mesh, updated in place by the
+  /// flow step before each phase-field step, section 5.3); call after every attach. Without
+  /// it the advection velocity is zero. The matrix then changes every step.
+  void set_velocity(std::shared_ptr<const Function> v);
+  /// The model's forms have the advection term (all but the Allen-Cahn models).
+  bool advected() const { return forms_.advected; }
   /// Advance one time step of size dt.
   StepTimings step(double dt);
 
@@ -52,6 +58,7 @@ public:
 
 private:
   void bind_forms();
+  void bind_system_forms(); ///< a_, L_ (they depend on the velocity)
   void compute_mu_from_phi();
   void update_multipliers(double dt);
   /// Helfrich models: solve for the unit loads and add them with the multipliers that
@@ -72,6 +79,8 @@ private:
   FieldMap fields_;
   std::vector<std::vector<std::int32_t>> to_mixed_; ///< per field: V dof -> W dof
   std::shared_ptr<Function> u0_;                    ///< state at t^n on W
+  std::shared_ptr<const Function> velocity_;        ///< advection velocity ("v")
+  bool flowing_ = false;                            ///< velocity_ is the flow's
   std::shared_ptr<Function> boundary_value_;
   BCs bcs_;
   std::shared_ptr<Form> a_, L_;
