@@ -55,4 +55,12 @@ phi_init = Coefficient(V)
 a_mu = m * q * dx
 L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q) * dxq
 
-forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu]
+# dE/dphi of (3.84) at the state after a step, for the flow's interface force
+# (dE/dphi) grad phi of (3.81) (Navier-Stokes-Helfrich, L2 flow): its L2 projection onto P2
+# (mass matrix a_mu), Lap mu integrated by parts with grad mu . n = 0 (section 3.4.1).
+phi_h = Coefficient(V)
+mu_h = Coefficient(V)
+L_dE = (-inner(grad(mu_h), grad(q)) - ddW0(phi_h, eps, H0) * mu_h * q / eps**2
+        + (lam_v + lam_a * kappa_of(phi_h, mu_h, H0)) * q) / Be * dxq
+
+forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu, L_dE]

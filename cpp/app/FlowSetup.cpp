@@ -37,8 +37,4 @@ FlowParameters flow_parameters(const scene::Scene& scene)
   return p;
 }
 
-const char* interface_potential(scene::Model model)
-{
-  return model == scene::Model::helfrich_hm1 ? "w" : "mu";
-}
 } // namespace cellphase

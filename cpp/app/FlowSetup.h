@@ -9,7 +9,4 @@ namespace cellphase
 /// prefactor, walls (open sides get none) and solver options. Requires scene.flow.
 FlowParameters flow_parameters(const scene::Scene& scene);
 
-/// Name of the phase-field module's field that is dE/dphi for the interface force:
-/// mu (Cahn-Hilliard, times 1/Ca) or w (helfrich_hm1, (3.62)).
-const char* interface_potential(scene::Model model);
 } // namespace cellphase

@@ -57,8 +57,8 @@ void Simulation::attach_flow(std::shared_ptr<const Function> velocity)
   if (!flow_)
     return;
   const auto& fields = module_.fields();
-  flow_->attach(module_.space()->mesh(), fields.at("phi"),
-                fields.at(interface_potential(scene_.phase_field.model)), velocity);
+  flow_->attach(module_.space()->mesh(), fields.at("phi"), module_.interface_potential(),
+                velocity);
   module_.set_velocity(flow_->velocity());
 }
 
@@ -156,6 +156,9 @@ std::string Simulation::save_checkpoint(const LoopState& at)
     // v^n is the flow's only history (p is recomputed each step; kept for the output).
     save_field(*flow_->velocity(), "flow.v", data);
     save_field(*flow_->pressure(), "flow.p", data);
+    // dE/dphi of the L2 Helfrich flows (the next flow step's force) uses them
+    data.set("multipliers.volume", module_.multipliers()[0]);
+    data.set("multipliers.area", module_.multipliers()[1]);
   }
   data.texts["model"] = scene::to_string(scene_.phase_field.model);
   data.texts["scene"] = scene_.resolved_yaml;
@@ -211,6 +214,7 @@ Simulation::LoopState Simulation::restore()
         throw CheckpointError("it was written without flow, the scene has a flow section");
       auto v = std::make_shared<Function>(create_vector_p2_space(mesh, scene_.domain.dim));
       restore_field(data, "flow.v", *v);
+      module_.set_multipliers({data.scalar("multipliers.volume"), data.scalar("multipliers.area")});
       attach_flow(v);
       restore_field(data, "flow.p", *flow_->pressure());
     }

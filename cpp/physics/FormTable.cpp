@@ -44,6 +44,7 @@ namespace cellphase
     CELLPHASE_MU_PROJECTION(helfrich_l2, D)                                                     \
     f.load_v = form_helfrich_l2_##D##_load_v;                                                   \
     f.load_a = form_helfrich_l2_##D##_load_a;                                                   \
+    f.L_dE = form_helfrich_l2_##D##_L_dE;                                                       \
     f.advected = true;                                                                          \
     break;                                                                                      \
   case scene::Model::helfrich_hm1:                                                              \

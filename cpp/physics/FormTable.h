@@ -19,6 +19,8 @@ struct ModelForms
   // Initial mu as the L2 projection of (3.23) (Helfrich models)
   ufcx_form* a_mu = nullptr;
   ufcx_form* L_mu = nullptr;
+  /// dE/dphi projected onto P2 (L2 Helfrich flows; coefficients "phi_h", "mu_h")
+  ufcx_form* L_dE = nullptr;
   // Integrals of the explicit multipliers
   ufcx_form* dW_integral = nullptr;  ///< (2.27), allen_cahn
   ufcx_form* load_v = nullptr;       ///< unit loads of the volume and area multipliers or

@@ -95,6 +95,7 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   }
 
   u0_ = std::make_shared<Function>(W_);
+  dE_.reset();
   velocity_.reset();
   flowing_ = false;
   if (forms_.advected)
@@ -130,6 +131,34 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
 
   if (forms_.a_mu && fields.find("mu") == fields.end())
     compute_mu_from_phi();
+}
+
+std::shared_ptr<const Function> PhaseFieldModule::interface_potential()
+{
+  if (!forms_.L_dE)
+    return fields_.at(scene_.phase_field.model == Model::helfrich_hm1 ? "w" : "mu");
+  if (!dE_)
+  {
+    dE_ = std::make_shared<Function>(V_);
+    dE_->name = "dE";
+    CoefficientMap coeffs{{"phi_h", fields_.at("phi")}, {"mu_h", fields_.at("mu")}};
+    dE_rhs_ = compat::create_form(*forms_.L_dE, {V_}, coeffs, constants_);
+    auto a = compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_);
+    dE_mass_ = assemble_matrix(*a, {}, nullptr);
+    dE_solver_ = std::make_unique<LinearSolver>(comm_, "mass_", std::map<std::string, std::string>{});
+    dE_solver_->set_operator(dE_mass_->mat());
+    update_interface_potential();
+  }
+  return dE_;
+}
+
+void PhaseFieldModule::update_interface_potential()
+{
+  la::Vector<T> b(V_->dofmap()->index_map, 1);
+  b.set(0.0);
+  fem::assemble_vector(b.mutable_array(), *dE_rhs_);
+  b.scatter_rev(std::plus<T>());
+  dE_solver_->solve(b, *dE_->x(), "the projection of dE/dphi (3.84)");
 }
 
 void PhaseFieldModule::set_velocity(std::shared_ptr<const Function> v)
@@ -371,6 +400,8 @@ StepTimings PhaseFieldModule::step(double dt)
   if (!loads_.empty())
     apply_constraint_loads();
   scatter_state();
+  if (dE_)
+    update_interface_potential(); // the flow's next step reads dE/dphi of this state
   t.solve = seconds_since(t1);
   return t;
 }

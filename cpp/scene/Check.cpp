@@ -99,6 +99,8 @@ void flow_report(const Scene& s, Report& r)
   const double cap = flow_capillary(s);
   if (s.phase_field.model == Model::helfrich_hm1)
     r.line("  interface force", "w grad phi (3.59), w = dE/dphi (3.62)");
+  else if (is_helfrich(s.phase_field.model))
+    r.line("  interface force", "(dE/dphi) grad phi (3.81), dE/dphi of (3.84) projected on P2");
   else
     r.line("  interface force", fmt(cap) + " mu grad phi (2.8; 3 sigma/(2 sqrt2) = 1/Ca"
                                     + (f.surface_tension ? ", sigma " + fmt(*f.surface_tension)

@@ -98,7 +98,7 @@ void read_flow(const Section& top, Scene& s)
   if (!couples_to_flow(m))
     top.fail("flow", std::string("phase_field.model ") + to_string(m)
                          + " cannot be coupled to the flow; use cahn_hilliard (surface "
-                           "tension, 2.8) or helfrich_hm1 (3.59)-(3.64)");
+                           "tension, 2.8) or a Helfrich model (3.59)-(3.64), (3.81)-(3.85)");
   const int dim = s.domain.dim;
   Flow flow;
   flow.equations = f.choice<FlowEquations>(
@@ -110,9 +110,10 @@ void read_flow(const Section& top, Scene& s)
   flow.force = read_vector(f, "force", dim);
   if (f.has("surface_tension"))
   {
-    if (m == Model::helfrich_hm1)
-      f.fail("surface_tension", "model helfrich_hm1 takes its interface force from w (3.62); "
-                                "surface tension is only for cahn_hilliard");
+    if (is_helfrich(m))
+      f.fail("surface_tension", std::string("model ") + to_string(m)
+                                    + " takes its interface force from its energy "
+                                      "(3.62)/(3.84); surface tension is only for cahn_hilliard");
     flow.surface_tension = f.number("surface_tension", non_negative());
   }
   const Section walls = f.section("walls");

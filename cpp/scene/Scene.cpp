@@ -69,7 +69,7 @@ const char* to_string(WallType w)
   return "unknown";
 }
 
-bool couples_to_flow(Model m) { return m == Model::cahn_hilliard || m == Model::helfrich_hm1; }
+bool couples_to_flow(Model m) { return m == Model::cahn_hilliard || is_helfrich(m); }
 
 double flow_reynolds(const Scene& s)
 {
@@ -78,7 +78,7 @@ double flow_reynolds(const Scene& s)
 
 double flow_capillary(const Scene& s)
 {
-  if (s.phase_field.model == Model::helfrich_hm1)
+  if (is_helfrich(s.phase_field.model))
     return 1.0;
   if (s.flow && s.flow->surface_tension)
     return 3 * *s.flow->surface_tension / (2 * std::sqrt(2.0));

@@ -187,12 +187,13 @@ std::vector<std::string> model_fields(Model m);
 bool is_helfrich(Model m);
 const char* to_string(WallType w);
 /// Models the flow can be coupled to (they have the advection term and a chemical
-/// potential for the interface force): cahn_hilliard (2.8), helfrich_hm1 (3.59)-(3.64).
+/// potential for the interface force): cahn_hilliard (2.8), the Helfrich models
+/// (Navier-Stokes-Helfrich: H^-1 (3.59)-(3.64), L2 with multipliers/penalties (3.81)-(3.85)).
 bool couples_to_flow(Model m);
 /// Re of the momentum equation: 0 for Stokes (explicitly or because numbers.Re = 0).
 double flow_reynolds(const Scene& s);
 /// Prefactor of the interface force (dE/dphi) grad phi: 3 sigma / (2 sqrt2) = 1/Ca (3.13)
-/// for Cahn-Hilliard (mu unscaled there), 1 for helfrich_hm1 (w is dE/dphi, (3.62)).
+/// for Cahn-Hilliard (mu unscaled there), 1 for the Helfrich models (dE/dphi itself).
 double flow_capillary(const Scene& s);
 
 } // namespace cellphase::scene

@@ -120,6 +120,15 @@ TEST(SceneFlow, HelfrichHm1UsesW)
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "w grad phi", check_report(s));
 }
 
+TEST(SceneFlow, HelfrichL2UsesProjectedVariation)
+{
+  std::string yaml = with_flow("flow: {}\n");
+  yaml.replace(yaml.find("cahn_hilliard"), 13, "helfrich_penalty");
+  const Scene s = parse_scene(yaml, "flow.yaml");
+  EXPECT_EQ(flow_capillary(s), 1.0);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "dE/dphi of (3.84)", check_report(s));
+}
+
 TEST(SceneFlow, CheckReport)
 {
   const std::string r = check_report(parse_scene(with_flow(flow_section), "flow.yaml"));
@@ -161,7 +170,7 @@ TEST(SceneFlow, Errors)
   EXPECT_ERROR(ac, "flow: phase_field.model allen_cahn cannot be coupled to the flow");
   std::string hm1 = with_flow("flow: {surface_tension: 1}\n");
   hm1.replace(hm1.find("cahn_hilliard"), 13, "helfrich_hm1");
-  EXPECT_ERROR(hm1, "flow.surface_tension: model helfrich_hm1 takes its interface force from w");
+  EXPECT_ERROR(hm1, "flow.surface_tension: model helfrich_hm1 takes its interface force from its energy");
   // --set reaches the flow keys
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "flow.density.inside",
                       error_of(with_flow(flow_section), {"flow.density.inside=-2"}));
