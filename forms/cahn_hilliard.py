@@ -5,7 +5,8 @@
 from ufl import (Coefficient, FunctionSpace, TestFunctions, TrialFunctions, dx, grad, inner,
                  split)
 
-from cellphase_ufl import QDEG, W, advection, constants, dW, ddW, domain, mixed, velocity
+from cellphase_ufl import (ADVECTION_DEGREE, QDEG, W, advection, constants, dW, ddW, domain,
+                           mixed, velocity)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -17,7 +18,7 @@ dxq = dx(metadata={"quadrature_degree": QDEG})
 
 common = (phi * psi / dt + gamma * inner(grad(mu), grad(psi))
           + mu * nu - eps * inner(grad(phi), grad(nu))) * dx \
-    + advection(phi, psi, v) * dxq                                # v . grad phi, 2.8
+    + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)        # v . grad phi, 2.8
 # Taylor linearisation of W'(phi) about phi^n (section 5.3)
 a = common - ddW(phi0) / eps * phi * nu * dxq
 L = phi0 * psi / dt * dx + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dxq

@@ -7,8 +7,8 @@
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
-from cellphase_ufl import (P2, QDEG, advection, constants, dddW0, ddW0, domain, dW0,
-                           kappa_of, mixed, velocity)
+from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, constants, dddW0, ddW0,
+                           domain, dW0, kappa_of, mixed, velocity)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -24,7 +24,7 @@ v = velocity()  # flow velocity (zero without flow): the material derivative (3.
 # Linear part shared by both time discretisations (Lap mu integrated by parts)
 common = (phi * psi / dt - g * inner(grad(mu), grad(psi))
           + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
-    + advection(phi, psi, v) * dxq  # v . grad phi of (3.61) / (3.83)
+    + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
 rhs_common = phi0 * psi / dt * dx - g * (lam_v + lam_a * kappa0) * psi * dxq
 
 # Taylor linearisation (section 5.3):
