@@ -1,20 +1,24 @@
 # Cahn-Hilliard equation (2.25) as a split system for (phi, mu):
-#   d_t phi = div(gamma grad mu),   mu = -eps Lap phi + W'(phi)/eps
-# with natural boundary conditions grad mu . n = 0.
+#   d_t phi + v . grad phi = div(gamma grad mu),   mu = -eps Lap phi + W'(phi)/eps
+# with natural boundary conditions grad mu . n = 0. v is the velocity of the flow step
+# (model H, section 2.8), zero without flow; its term is implicit in phi^{n+1}.
 from ufl import (Coefficient, FunctionSpace, TestFunctions, TrialFunctions, dx, grad, inner,
                  split)
 
-from cellphase_ufl import QDEG, W, constants, dW, ddW, domain, mixed
+from cellphase_ufl import (ADVECTION_DEGREE, QDEG, W, advection, constants, dW, ddW, domain,
+                           mixed, velocity)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
 u0 = Coefficient(Wsp)  # (phi^n, mu^n)
 phi0, mu0 = split(u0)
+v = velocity()
 dt, eps, gamma, S = constants("dt", "eps", "gamma", "S")
 dxq = dx(metadata={"quadrature_degree": QDEG})
 
 common = (phi * psi / dt + gamma * inner(grad(mu), grad(psi))
-          + mu * nu - eps * inner(grad(phi), grad(nu))) * dx
+          + mu * nu - eps * inner(grad(phi), grad(nu))) * dx \
+    + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)        # v . grad phi, 2.8
 # Taylor linearisation of W'(phi) about phi^n (section 5.3)
 a = common - ddW(phi0) / eps * phi * nu * dxq
 L = phi0 * psi / dt * dx + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dxq

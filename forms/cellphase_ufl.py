@@ -15,6 +15,30 @@ domain = Mesh(VectorElement("Lagrange", cell, 1))
 P2 = FiniteElement("Lagrange", cell, 2)
 
 
+P2vec = VectorElement("Lagrange", cell, 2)
+
+
+def velocity():
+    """The flow velocity v^{n+1} that advects phi (operator split of section 5.3); the
+    flow module's vector P2 field, or zero when the scene has no flow."""
+    from ufl import Coefficient, FunctionSpace
+    return Coefficient(FunctionSpace(domain, P2vec))
+
+
+def advection(phi, psi, v):
+    """v . grad(phi) tested with psi, written as -phi v . grad(psi) (integration by parts,
+    v.n = 0 on walls, div v = 0): psi = 1 gives 0, so int phi is kept exactly although the
+    Taylor-Hood v is only weakly divergence-free. (2.58), (3.45), (3.61), (3.83)."""
+    from ufl import dot, grad
+    return -phi * dot(v, grad(psi))
+
+
+# The advection term is integrated with its exact degree (P2 * P2 * grad P1 = 5), a rule of
+# its own: FFCx then emits it as a separate block, and the code (and round-off) of the other
+# terms is the same as without flow, where the block adds exact zeros.
+ADVECTION_DEGREE = 5
+
+
 def mixed(n):
     """n scalar P2 fields solved together (phi first)."""
     return MixedElement([P2] * n)

@@ -7,7 +7,8 @@
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
-from cellphase_ufl import (P2, QDEG, constants, dddW0, ddW0, domain, dW0, kappa_of, mixed)
+from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, constants, dddW0, ddW0,
+                           domain, dW0, kappa_of, mixed, velocity)
 
 Wsp = FunctionSpace(domain, mixed(3))
 (phi, mu, w), (psi, nu, zeta) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -16,10 +17,12 @@ phi0, mu0, w0 = split(u0)
 dt, eps, gamma, Be, H0, S, lam_a = constants("dt", "eps", "gamma", "Be", "H0", "S", "lam_a")
 dxq = dx(metadata={"quadrature_degree": QDEG})
 kappa0 = kappa_of(phi0, mu0, H0)
+v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
 
 common = (phi * psi / dt + gamma * inner(grad(w), grad(psi))
           + w * zeta + 1 / Be * inner(grad(mu), grad(zeta))
-          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx
+          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
+    + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
 rhs_common = phi0 * psi / dt * dx + lam_a / Be * kappa0 * zeta * dxq
 
 # Taylor linearisation as in helfrich_l2.py (section 5.3)

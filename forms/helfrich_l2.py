@@ -7,7 +7,8 @@
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
-from cellphase_ufl import (P2, QDEG, constants, dddW0, ddW0, domain, dW0, kappa_of, mixed)
+from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, constants, dddW0, ddW0,
+                           domain, dW0, kappa_of, mixed, velocity)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -18,10 +19,12 @@ dt, eps, gamma, Be, H0, S, lam_v, lam_a = constants(
 dxq = dx(metadata={"quadrature_degree": QDEG})
 g = gamma / Be
 kappa0 = kappa_of(phi0, mu0, H0)
+v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
 
 # Linear part shared by both time discretisations (Lap mu integrated by parts)
 common = (phi * psi / dt - g * inner(grad(mu), grad(psi))
-          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx
+          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
+    + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
 rhs_common = phi0 * psi / dt * dx - g * (lam_v + lam_a * kappa0) * psi * dxq
 
 # Taylor linearisation (section 5.3):
@@ -52,4 +55,12 @@ phi_init = Coefficient(V)
 a_mu = m * q * dx
 L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q) * dxq
 
-forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu]
+# dE/dphi of (3.84) at the state after a step, for the flow's interface force
+# (dE/dphi) grad phi of (3.81) (Navier-Stokes-Helfrich, L2 flow): its L2 projection onto P2
+# (mass matrix a_mu), Lap mu integrated by parts with grad mu . n = 0 (section 3.4.1).
+phi_h = Coefficient(V)
+mu_h = Coefficient(V)
+L_dE = (-inner(grad(mu_h), grad(q)) - ddW0(phi_h, eps, H0) * mu_h * q / eps**2
+        + (lam_v + lam_a * kappa_of(phi_h, mu_h, H0)) * q) / Be * dxq
+
+forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu, L_dE]

@@ -40,6 +40,12 @@ def plot_observables(obs, dim, title, path):
         ("centre of mass", "position", [("center_x", "x", None), ("center_y", "y", None),
                                         ("center_z", "z", None)]),
         ("degrees of freedom", "dofs", [("dofs", None, None)]),
+        # flow runs only (the columns are zero otherwise, so the panels drop out)
+        ("cell velocity", "velocity", [("cell_velocity_x", "x", None),
+                                       ("rise_velocity", "y (rise)", None),
+                                       ("cell_velocity_z", "z", None)]),
+        ("energy with flow", "energy", [("kinetic_energy", "kinetic", None),
+                                        ("total_energy_kinetic", "kinetic + interface", None)]),
     ]
     # Keep the curves whose column exists and is not all zero, and the panels left with one.
     panels = [(panel, ylabel, kept) for panel, ylabel, curves in panels

@@ -1,11 +1,12 @@
 #include "app/Simulation.h"
-#include "util/Mpi.h"
+#include "app/FlowSetup.h"
 #include "app/StopSignal.h"
 #include "io/FieldSnapshot.h"
 #include "io/Progress.h"
 #include "mesh/FieldTransfer.h"
 #include "scene/Shapes.h"
 #include "util/Clock.h"
+#include "util/Mpi.h"
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -41,6 +42,46 @@ Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart)
       module_(scene, comm),
       checkpoints_(comm, scene.output.directory, scene.output.checkpoints.keep)
 {
+  if (scene.flow)
+    flow_ = std::make_unique<FlowModule>(flow_parameters(scene), comm);
+}
+
+void Simulation::attach_flow(std::shared_ptr<const Function> velocity)
+{
+  if (!flow_)
+    return;
+  const auto& fields = module_.fields();
+  flow_->attach(module_.space()->mesh(), fields.at("phi"), module_.interface_potential(),
+                velocity);
+  module_.set_velocity(flow_->velocity());
+}
+
+FieldMap Simulation::all_fields() const
+{
+  FieldMap all = module_.fields();
+  if (flow_)
+  {
+    all["v"] = flow_->velocity();
+    all["p"] = flow_->pressure();
+  }
+  return all;
+}
+
+StepTimings Simulation::step(double dt)
+{
+  StepTimings t;
+  if (flow_)
+  {
+    const FlowTimings f = flow_->step(dt);
+    t.assemble += f.assemble;
+    t.factorise += f.factorise;
+    t.solve += f.solve;
+  }
+  const StepTimings p = module_.step(dt);
+  t.assemble += p.assemble;
+  t.factorise += p.factorise;
+  t.solve += p.solve;
+  return t;
 }
 
 void Simulation::log(const char* fmt, ...) const
@@ -69,6 +110,7 @@ Simulation::LoopState Simulation::initialise()
   auto phi = std::make_shared<Function>(V);
   compat::interpolate(*phi, [&initial](double x, double y, double z) { return initial(x, y, z); });
   module_.attach(V, {{"phi", phi}});
+  attach_flow(nullptr); // fluid at rest
   observables_ = std::make_unique<Observables>(scene_, module_);
   auto v = observables_->evaluate();
   module_.set_targets({v.phi_integral, v.energy_ch});
@@ -103,6 +145,15 @@ std::string Simulation::save_checkpoint(const LoopState& at)
     names += (names.empty() ? "" : ",") + name;
   }
   data.texts["fields"] = names;
+  if (flow_)
+  {
+    // v^n is the flow's only history (p is recomputed each step; kept for the output).
+    save_field(*flow_->velocity(), "flow.v", data);
+    save_field(*flow_->pressure(), "flow.p", data);
+    // dE/dphi of the L2 Helfrich flows (the next flow step's force) uses them
+    data.set("multipliers.volume", module_.multipliers()[0]);
+    data.set("multipliers.area", module_.multipliers()[1]);
+  }
   data.texts["model"] = scene::to_string(scene_.phase_field.model);
   data.texts["scene"] = scene_.resolved_yaml;
   data.texts["scene.source"] = scene_.source;
@@ -151,6 +202,16 @@ Simulation::LoopState Simulation::restore()
       fields[name] = f;
     }
     module_.attach(V, fields);
+    if (flow_)
+    {
+      if (!data.arrays.count("flow.v.block_size"))
+        throw CheckpointError("it was written without flow, the scene has a flow section");
+      auto v = std::make_shared<Function>(create_vector_p2_space(mesh, scene_.domain.dim));
+      restore_field(data, "flow.v", *v);
+      module_.set_multipliers({data.scalar("multipliers.volume"), data.scalar("multipliers.area")});
+      attach_flow(v);
+      restore_field(data, "flow.p", *flow_->pressure());
+    }
     module_.set_targets({data.scalar("targets.volume"), data.scalar("targets.area")});
     initial_volume_ = data.scalar("initial_volume");
     observables_ = std::make_unique<Observables>(scene_, module_);
@@ -174,7 +235,7 @@ void Simulation::open_output(const LoopState& start)
   log("cellphase: %s, %dD, model %s (%s), %d refinement levels, %lld dofs\n",
       scene_.source.c_str(), scene_.domain.dim, scene::to_string(scene_.phase_field.model),
       scene::to_string(scene_.numerics.linearisation), adaptive_.levels(),
-      (long long)module_.num_dofs());
+      (long long)(module_.num_dofs() + (flow_ ? flow_->num_dofs() : 0)));
 }
 
 std::unique_ptr<FieldWriter> Simulation::make_writer(const LoopState& start) const
@@ -193,7 +254,15 @@ double Simulation::remesh(double& volume_change)
   auto V = create_p2_space(mesh, scene_.domain.dim);
   TransferReport report;
   auto fields = transfer_fields(module_.fields(), V, report);
+  std::shared_ptr<Function> velocity;
+  if (flow_)
+  {
+    // v^n moves with the fields (interpolated; div v = 0 again after the next flow step).
+    velocity = std::make_shared<Function>(create_vector_p2_space(mesh, scene_.domain.dim));
+    compat::transfer(flow_->velocity(), *velocity);
+  }
   module_.attach(V, fields);
+  attach_flow(velocity);
   observables_ = std::make_unique<Observables>(scene_, module_);
   volume_change = report.volume_change_corrected;
   return seconds_since(t0);
@@ -202,7 +271,7 @@ double Simulation::remesh(double& volume_change)
 void Simulation::keep_good_state(const LoopState& at)
 {
   good_.at = at;
-  for (const auto& [name, f] : module_.fields())
+  for (const auto& [name, f] : all_fields())
   {
     auto x = f->x()->array();
     good_.values[name].assign(x.begin(), x.end());
@@ -213,7 +282,7 @@ void Simulation::fail(const LoopState& at, const std::string& what)
 {
   // Back to the fields at the start of the failed step (same mesh: remeshing happens
   // before a step), then save them as a checkpoint and as output.
-  for (const auto& [name, f] : module_.fields())
+  for (const auto& [name, f] : all_fields())
   {
     auto x = f->x()->mutable_array();
     const auto& good = good_.values.at(name);
@@ -225,7 +294,7 @@ void Simulation::fail(const LoopState& at, const std::string& what)
     saved = save_checkpoint(good_.at);
     if (!writer_)
       writer_ = make_writer(good_.at);
-    writer_->write(module_.fields(), good_.at.time, good_.at.step);
+    writer_->write(all_fields(), good_.at.time, good_.at.step);
     saved += " and " + writer_->index_path();
   }
   catch (const std::exception& e)
@@ -241,7 +310,7 @@ void Simulation::fail(const LoopState& at, const std::string& what)
 
 void Simulation::check_health(const LoopState& at, const ObservableValues& v)
 {
-  for (const auto& [name, f] : module_.fields())
+  for (const auto& [name, f] : all_fields())
   {
     int bad = 0;
     for (double x : f->x()->array())
@@ -273,8 +342,22 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
   r.step = at.step;
   r.time = at.time;
   r.values = observables_->evaluate();
+  if (flow_)
+  {
+    const FlowObservables f = flow_->observables();
+    auto& v = r.values;
+    v.kinetic_energy = scene::flow_reynolds(scene_) * f.kinetic_energy; // (3.12)
+    v.cell_velocity = f.cell_velocity;
+    // Cahn-Hilliard: the interface energy is (1/Ca) E_CH (3.13); Helfrich: the model's own.
+    const double interface = scene_.phase_field.model == scene::Model::cahn_hilliard
+                                 ? scene::flow_capillary(scene_) * v.energy_ch
+                                 : v.total_energy;
+    v.total_with_kinetic = v.kinetic_energy + interface;
+  }
+  else
+    r.values.total_with_kinetic = r.values.total_energy;
   check_health(at, r.values);
-  r.dofs = module_.num_dofs();
+  r.dofs = module_.num_dofs() + (flow_ ? flow_->num_dofs() : 0);
   r.lam_v = module_.multipliers()[0];
   r.lam_a = module_.multipliers()[1];
   r.timings = timings;
@@ -282,7 +365,7 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
   r.remesh_volume_change = volume_change;
   auto t0 = Clock::now();
   if (writer_ && (at.step % scene_.output.every == 0 || at.step == last_step_))
-    writer_->write(module_.fields(), at.time, at.step);
+    writer_->write(all_fields(), at.time, at.step);
   r.output_time = seconds_since(t0);
   csv_->write(r);
 }
@@ -318,7 +401,7 @@ void Simulation::run()
     StepTimings timings;
     try
     {
-      timings = module_.step(dt);
+      timings = step(dt);
     }
     catch (const SolverError& e)
     {
@@ -346,7 +429,8 @@ void Simulation::run()
     }
   }
   progress.finish(steps, at.time);
-  log("  %d factorisations; observables in %s/observables.csv%s\n", module_.factorisations(),
+  log("  %d factorisations; observables in %s/observables.csv%s\n",
+      module_.factorisations() + (flow_ ? flow_->factorisations() : 0),
       scene_.output.directory.c_str(),
       writer_ ? ", fields in fields.xdmf" : "");
 }

@@ -5,6 +5,7 @@
 #include "io/FieldWriter.h"
 #include "io/ObservablesCsv.h"
 #include "mesh/AdaptiveMesh.h"
+#include "physics/FlowModule.h"
 #include "physics/Observables.h"
 #include "physics/PhaseFieldModule.h"
 #include "scene/Scene.h"
@@ -63,6 +64,13 @@ private:
   void open_output(const LoopState& start);
   std::unique_ptr<FieldWriter> make_writer(const LoopState& start) const;
   double remesh(double& volume_change);
+  /// Flow on the phase field's current mesh, reading its phi and dE/dphi, starting from
+  /// `velocity` (null: at rest); the phase field is then advected by the flow's velocity.
+  void attach_flow(std::shared_ptr<const Function> velocity);
+  /// The phase-field fields plus, with flow, the velocity v and pressure p.
+  FieldMap all_fields() const;
+  /// One step of the split (section 5.3): flow with phi^n, mu^n, then phi with v^{n+1}.
+  StepTimings step(double dt);
   void record(const LoopState& at, const StepTimings& timings, double remesh_time,
               double volume_change);
   /// Throws NumericalFailure (after saving the last good state) if a field is not finite,
@@ -78,6 +86,7 @@ private:
   bool restart_;
   AdaptiveMesh adaptive_;
   PhaseFieldModule module_;
+  std::unique_ptr<FlowModule> flow_; ///< only if the scene has a flow section
   CheckpointStore checkpoints_;
   std::unique_ptr<Observables> observables_;
   std::unique_ptr<ObservablesCsv> csv_;

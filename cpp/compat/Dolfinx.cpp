@@ -236,6 +236,10 @@ PointEvaluator make_evaluator(std::shared_ptr<const Function> u)
 void transfer(std::shared_ptr<const Function> from, Function& to)
 {
   auto V = to.function_space();
+  // Scalar or vector (blocked) fields: vs values per point.
+  const int vs = V->element()->value_size();
+  if (from->function_space()->element()->value_size() != vs)
+    throw std::invalid_argument("transfer: the fields differ in value size");
   auto cells = all_local_cells(*V->mesh());
   // interpolation_coords returns 3 rows (x, y, z) of N points; eval wants N rows of 3.
   const std::vector<double> X = fem::interpolation_coords(*V->element(), *V->mesh(), cells);
@@ -244,9 +248,23 @@ void transfer(std::shared_ptr<const Function> from, Function& to)
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d)
       pts[3 * i + d] = X[d * n + i];
-  std::vector<double> values(n);
-  make_evaluator(from)(pts, values);
-  fem::interpolate(to, std::span<const T>(values), {1, n}, std::span<const std::int32_t>(cells));
+  if (vs == 1)
+  {
+    std::vector<double> values(n);
+    make_evaluator(from)(pts, values);
+    fem::interpolate(to, std::span<const T>(values), {1, n}, std::span<const std::int32_t>(cells));
+    return;
+  }
+  PointLocator locator(from->function_space()->mesh());
+  auto from_cells = locator.locate(pts);
+  std::vector<double> values(n * vs); // N rows of vs
+  from->eval(pts, {n, 3}, from_cells, values, {n, std::size_t(vs)});
+  std::vector<double> rows(n * vs);   // vs rows of N, as interpolate wants
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < vs; ++c)
+      rows[c * n + i] = values[i * vs + c];
+  fem::interpolate(to, std::span<const T>(rows), {std::size_t(vs), n},
+                   std::span<const std::int32_t>(cells));
 }
 
 std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, const Space& V)

@@ -73,7 +73,8 @@ void interpolate_vector(Function& u, const VectorPointFunction& f);
 /// redistribution; points just outside (round-off) use the closest cell.
 PointEvaluator make_evaluator(std::shared_ptr<const Function> u);
 
-/// to <- from, evaluating `from` at the interpolation points of `to` (meshes may differ).
+/// to <- from, evaluating `from` at the interpolation points of `to` (meshes may differ);
+/// scalar or vector fields (same value size).
 void transfer(std::shared_ptr<const Function> from, Function& to);
 
 /// Dofs of sub-space `sub` of the mixed space W on the domain boundary, as the pair

@@ -111,6 +111,7 @@ void FieldWriter::write_mesh(std::shared_ptr<const Mesh> mesh, int step)
   auto e = basix::create_element(basix::element::family::P, cell, 1,
                                  basix::element::lagrange_variant::equispaced, false);
   p1_ = std::make_shared<Space>(fem::create_functionspace(fine, e, 1));
+  p1_vector_ = std::make_shared<Space>(fem::create_functionspace(fine, e, tdim));
 
   const std::string file = directory_ + "/fields/" + mesh_name_ + ".xdmf";
   {
@@ -149,7 +150,9 @@ void FieldWriter::write(const FieldMap& fields, double time, int step)
       auto it = fields.find(name);
       if (it == fields.end())
         continue;
-      Function u(p1_);
+      // Vector fields (the velocity) as vector P1; the pressure (P1) loses nothing either.
+      const bool vector = it->second->function_space()->element()->value_size() > 1;
+      Function u(vector ? p1_vector_ : p1_);
       u.name = name;
       compat::transfer(it->second, u);
       // The data file's own XML is not used (the index points at its datasets); give it an

@@ -44,6 +44,7 @@ private:
   std::unique_ptr<pugi::xml_document> index_; ///< rank 0 only
   std::shared_ptr<const Mesh> source_mesh_;  ///< mesh of the last written fields
   std::shared_ptr<Space> p1_;                ///< P1 on its uniform refinement
+  std::shared_ptr<Space> p1_vector_;         ///< vector P1 there (velocity)
   std::string mesh_name_;
   std::optional<double> last_time_;
 };

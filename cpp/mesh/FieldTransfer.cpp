@@ -9,6 +9,11 @@ std::shared_ptr<Space> create_p2_space(std::shared_ptr<Mesh> mesh, int dim)
   return compat::create_space(observable_forms(dim).p2_space, "phi", mesh);
 }
 
+std::shared_ptr<Space> create_vector_p2_space(std::shared_ptr<const Mesh> mesh, int dim)
+{
+  return compat::create_space(flow_forms(dim).space, "v0", mesh);
+}
+
 double integral_of(std::shared_ptr<const Function> f)
 {
   auto V = f->function_space();

@@ -14,6 +14,9 @@ struct TransferReport
 /// New P2 space on `mesh` (the space every field lives in).
 std::shared_ptr<Space> create_p2_space(std::shared_ptr<Mesh> mesh, int dim);
 
+/// New vector P2 space on `mesh` (the flow velocity).
+std::shared_ptr<Space> create_vector_p2_space(std::shared_ptr<const Mesh> mesh, int dim);
+
 /// Interpolate all fields onto V, then correct phi by c (1 - phi^2) so that int phi is
 /// the old one: the correction acts only in the interface and keeps phi = -1 outside.
 FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, TransferReport& report);

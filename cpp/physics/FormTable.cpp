@@ -36,6 +36,7 @@ namespace cellphase
     break;                                                                                      \
   case scene::Model::cahn_hilliard:                                                             \
     CELLPHASE_SYSTEM(cahn_hilliard, D)                                                          \
+    f.advected = true;                                                                          \
     break;                                                                                      \
   case scene::Model::helfrich_lagrange:                                                         \
   case scene::Model::helfrich_penalty:                                                          \
@@ -43,11 +44,14 @@ namespace cellphase
     CELLPHASE_MU_PROJECTION(helfrich_l2, D)                                                     \
     f.load_v = form_helfrich_l2_##D##_load_v;                                                   \
     f.load_a = form_helfrich_l2_##D##_load_a;                                                   \
+    f.L_dE = form_helfrich_l2_##D##_L_dE;                                                       \
+    f.advected = true;                                                                          \
     break;                                                                                      \
   case scene::Model::helfrich_hm1:                                                              \
     CELLPHASE_SYSTEM(helfrich_hm1, D)                                                           \
     f.load_a = form_helfrich_hm1_##D##_load_a;                                                  \
     CELLPHASE_MU_PROJECTION(helfrich_hm1, D)                                                    \
+    f.advected = true;                                                                          \
     break;                                                                                      \
   }
 
@@ -77,6 +81,8 @@ ObservableForms observable_forms(int dim)
   f.area_weights = form_observables_##D##_area_weights;                                         \
   f.com[0] = form_observables_##D##_com_0;                                                      \
   f.com[1] = form_observables_##D##_com_1;                                                      \
+  f.moments = {form_observables_##D##_moment_xx, form_observables_##D##_moment_xy,              \
+               form_observables_##D##_moment_yy};                                               \
   f.p2_space = functionspace_form_observables_##D##_phi_integral;
   if (dim == 2)
   {

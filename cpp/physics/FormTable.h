@@ -13,10 +13,14 @@ struct ModelForms
   ufcx_form* L = nullptr;
   ufcx_form* a_stab = nullptr;   ///< stabilised matrix (constant between remeshes)
   ufcx_form* L_stab = nullptr;
-  ufcx_space_fn space = nullptr; ///< space of the state coefficient "u0" of `a`
+  ufcx_space_fn space = nullptr; ///< space of the state coefficient "u0" of `a`, and of
+                                 ///< the advection velocity "v" (models with one)
+  bool advected = false;         ///< `a` has the advection term with coefficient "v"
   // Initial mu as the L2 projection of (3.23) (Helfrich models)
   ufcx_form* a_mu = nullptr;
   ufcx_form* L_mu = nullptr;
+  /// dE/dphi projected onto P2 (L2 Helfrich flows; coefficients "phi_h", "mu_h")
+  ufcx_form* L_dE = nullptr;
   // Integrals of the explicit multipliers
   ufcx_form* dW_integral = nullptr;  ///< (2.27), allen_cahn
   ufcx_form* load_v = nullptr;       ///< unit loads of the volume and area multipliers or
@@ -33,6 +37,8 @@ struct ObservableForms
   ufcx_form* volume_weights = nullptr; ///< int q: volume of a P2 function as a dot product
   ufcx_form* area_weights = nullptr;   ///< int kappa(phi) q: first variation of E_CH
   std::array<ufcx_form*, 3> com{nullptr, nullptr, nullptr};
+  /// int phi~ x x, int phi~ x y, int phi~ y y (inclination of a 2D cell)
+  std::array<ufcx_form*, 3> moments{nullptr, nullptr, nullptr};
   ufcx_space_fn p2_space = nullptr; ///< scalar P2 (coefficient "phi")
 };
 

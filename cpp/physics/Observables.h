@@ -16,6 +16,13 @@ struct ObservableValues
   std::array<double, 3> center{0, 0, 0};
   double circularity = 0;   ///< (5.20); sphericity in 3D
   double phi_min = 0, phi_max = 0;
+  /// 2D: angle (degrees, in (-90, 90]) of the major axis of the second moments of phi~
+  /// against the x axis; 0 for a circle and in 3D.
+  double inclination_deg = 0;
+  // Flow (zero without it), filled by the time loop from the flow module
+  double kinetic_energy = 0;     ///< Re/2 int rho(phi) |v|^2, (3.12)/(2.54)
+  double total_with_kinetic = 0; ///< kinetic + interface energy, whose law is (2.61)/(2.62)
+  std::array<double, 3> cell_velocity{0, 0, 0}; ///< int phi~ v / int phi~
 };
 
 class Observables
@@ -28,6 +35,6 @@ private:
   const scene::Scene& scene_;
   const PhaseFieldModule& module_;
   std::shared_ptr<Form> phi_integral_, volume_, energy_ch_, helfrich_;
-  std::vector<std::shared_ptr<Form>> com_;
+  std::vector<std::shared_ptr<Form>> com_, moments_;
 };
 } // namespace cellphase

@@ -1,6 +1,7 @@
 #include "physics/PhaseFieldModule.h"
 #include "util/Clock.h"
 #include <cmath>
+#include <stdexcept>
 
 namespace cellphase
 {
@@ -94,6 +95,16 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   }
 
   u0_ = std::make_shared<Function>(W_);
+  dE_.reset();
+  velocity_.reset();
+  flowing_ = false;
+  if (forms_.advected)
+  {
+    // Zero until the flow sets its velocity: the no-flow forms add exact zeros.
+    auto v = std::make_shared<Function>(compat::create_space(forms_.space, "v", mesh));
+    v->x()->set(0.0);
+    velocity_ = v;
+  }
   bcs_.clear();
   if (scene_.phi_boundary == scene::PhiBoundary::dirichlet)
   {
@@ -125,14 +136,63 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
     compute_mu_from_phi();
 }
 
-void PhaseFieldModule::bind_forms()
+std::shared_ptr<const Function> PhaseFieldModule::interface_potential()
+{
+  if (!forms_.L_dE)
+    return fields_.at(scene_.phase_field.model == Model::helfrich_hm1 ? "w" : "mu");
+  if (!dE_)
+  {
+    dE_ = std::make_shared<Function>(V_);
+    dE_->name = "dE";
+    CoefficientMap coeffs{{"phi_h", fields_.at("phi")}, {"mu_h", fields_.at("mu")}};
+    dE_rhs_ = compat::create_form(*forms_.L_dE, {V_}, coeffs, constants_);
+    auto a = compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_);
+    dE_mass_ = assemble_matrix(*a, {}, nullptr);
+    dE_solver_ = std::make_unique<LinearSolver>(comm_, "mass_", std::map<std::string, std::string>{});
+    dE_solver_->set_operator(dE_mass_->mat());
+    update_interface_potential();
+  }
+  return dE_;
+}
+
+void PhaseFieldModule::update_interface_potential()
+{
+  la::Vector<T> b(V_->dofmap()->index_map, 1);
+  b.set(0.0);
+  fem::assemble_vector(b.mutable_array(), *dE_rhs_);
+  b.scatter_rev(std::plus<T>());
+  dE_solver_->solve(b, *dE_->x(), "the projection of dE/dphi (3.84)");
+}
+
+void PhaseFieldModule::set_velocity(std::shared_ptr<const Function> v)
+{
+  if (!forms_.advected)
+    throw std::logic_error(std::string("model ") + scene::to_string(scene_.phase_field.model)
+                           + " has no advection term");
+  if (v->function_space()->mesh() != W_->mesh())
+    throw std::invalid_argument("phase field: the velocity must live on the current mesh");
+  velocity_ = v;
+  flowing_ = true;
+  bind_system_forms();
+  matrix_current_ = false;
+}
+
+void PhaseFieldModule::bind_system_forms()
 {
   CoefficientMap coeffs{{"u0", u0_}};
-  auto mesh = W_->mesh();
+  if (velocity_)
+    coeffs["v"] = velocity_;
   const ufcx_form& a = stabilised_ ? *forms_.a_stab : *forms_.a;
   const ufcx_form& L = stabilised_ ? *forms_.L_stab : *forms_.L;
   a_ = compat::create_form(a, {W_, W_}, coeffs, constants_);
   L_ = compat::create_form(L, {W_}, coeffs, constants_);
+}
+
+void PhaseFieldModule::bind_forms()
+{
+  CoefficientMap coeffs{{"u0", u0_}};
+  auto mesh = W_->mesh();
+  bind_system_forms();
   auto functional = [&](ufcx_form* f) -> std::shared_ptr<Form>
   { return f ? compat::create_form(*f, {}, coeffs, constants_, mesh) : nullptr; };
   dW_integral_ = functional(forms_.dW_integral);
@@ -324,8 +384,9 @@ StepTimings PhaseFieldModule::step(double dt)
   update_multipliers(dt);
 
   // Taylor linearisation: the matrix depends on phi^n and is rebuilt every step (the
-  // sparsity pattern and MUMPS' symbolic analysis are kept). Stabilised: built once.
-  const bool rebuild = !stabilised_ || !matrix_current_;
+  // sparsity pattern and MUMPS' symbolic analysis are kept). Stabilised: built once,
+  // unless the advection velocity (implicit term) changes every step.
+  const bool rebuild = !stabilised_ || !matrix_current_ || flowing_;
   if (rebuild)
   {
     if (A_)
@@ -354,6 +415,8 @@ StepTimings PhaseFieldModule::step(double dt)
   if (!loads_.empty())
     apply_constraint_loads();
   scatter_state();
+  if (dE_)
+    update_interface_potential(); // the flow's next step reads dE/dphi of this state
   t.solve = seconds_since(t1);
   return t;
 }

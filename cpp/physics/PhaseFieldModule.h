@@ -35,6 +35,22 @@ public:
   /// Build spaces, forms and solver on a (new) mesh. `fields` holds phi and, if known,
   /// the other fields of the model on the P2 space V; missing ones are computed from phi.
   void attach(std::shared_ptr<Space> V, FieldMap fields);
+  /// Advect phi with this velocity (vector P2 on the current mesh, updated in place by the
+  /// flow step before each phase-field step, section 5.3); call after every attach. Without
+  /// it the advection velocity is zero. The matrix then changes every step.
+  void set_velocity(std::shared_ptr<const Function> v);
+  /// dE/dphi of the model's energy, the potential of the interface force (dE/dphi) grad phi
+  /// of the flow: mu (Cahn-Hilliard, to be scaled by 1/Ca), w (helfrich_hm1, (3.62)), or for
+  /// the L2 Helfrich flows the L2 projection of (3.84), kept up to date after every step.
+  std::shared_ptr<const Function> interface_potential();
+  /// Multipliers of the last step (the projection of (3.84) uses them); for restarts.
+  void set_multipliers(const std::array<double, 2>& m)
+  {
+    lam_v_->value[0] = m[0];
+    lam_a_->value[0] = m[1];
+  }
+  /// The model's forms have the advection term (all but the Allen-Cahn models).
+  bool advected() const { return forms_.advected; }
   /// Advance one time step of size dt.
   StepTimings step(double dt);
 
@@ -52,6 +68,8 @@ public:
 
 private:
   void bind_forms();
+  void update_interface_potential(); ///< L2 Helfrich flows: dE_ <- projection of (3.84)
+  void bind_system_forms(); ///< a_, L_ (they depend on the velocity)
   void compute_mu_from_phi();
   void update_multipliers(double dt);
   /// Assemble the unit loads whose solutions are not current: they are solved together
@@ -76,6 +94,12 @@ private:
   FieldMap fields_;
   std::vector<std::vector<std::int32_t>> to_mixed_; ///< per field: V dof -> W dof
   std::shared_ptr<Function> u0_;                    ///< state at t^n on W
+  std::shared_ptr<const Function> velocity_;        ///< advection velocity ("v")
+  bool flowing_ = false;                            ///< velocity_ is the flow's
+  std::shared_ptr<Function> dE_;                    ///< dE/dphi (L2 Helfrich with flow)
+  std::shared_ptr<Form> dE_rhs_;
+  std::unique_ptr<LinearSolver> dE_solver_;         ///< mass matrix, factorised per mesh
+  std::unique_ptr<dolfinx::la::petsc::Matrix> dE_mass_;
   std::shared_ptr<Function> boundary_value_;
   BCs bcs_;
   std::shared_ptr<Form> a_, L_;

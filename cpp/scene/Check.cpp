@@ -72,6 +72,58 @@ public:
   std::ostringstream out_;
 };
 
+std::string vector_text(const std::array<double, 3>& v, int dim)
+{
+  std::string t = "(";
+  for (int i = 0; i < dim; ++i)
+    t += (i ? ", " : "") + fmt(v[i]);
+  return t + ")";
+}
+
+/// The flow section: equations with the numbers that enter them.
+void flow_report(const Scene& s, Report& r)
+{
+  const Flow& f = *s.flow;
+  const int dim = s.domain.dim;
+  const double Re = flow_reynolds(s);
+  std::string eq = Re == 0 ? "Stokes (Re = 0" : "Navier-Stokes (Re = " + fmt(Re);
+  if (Re == 0 && f.equations == FlowEquations::navier_stokes)
+    eq += ", as numbers.Re is 0";
+  r.line("flow", eq + "), P2/P1 Taylor-Hood, split: flow first, then phi advected (5.3)");
+  r.line("  density", "inside " + fmt(f.density[1]) + ", outside " + fmt(f.density[0])
+                          + " (relative; Re rho(phi) in the inertia)");
+  r.line("  viscosity", "inside " + fmt(f.viscosity[1]) + ", outside " + fmt(f.viscosity[0])
+                            + " (relative, (2.56))");
+  r.line("  body force", "rho(phi) " + vector_text(f.gravity, dim) + " + "
+                             + vector_text(f.force, dim));
+  const double cap = flow_capillary(s);
+  if (s.phase_field.model == Model::helfrich_hm1)
+    r.line("  interface force", "w grad phi (3.59), w = dE/dphi (3.62)");
+  else if (is_helfrich(s.phase_field.model))
+    r.line("  interface force", "(dE/dphi) grad phi (3.81), dE/dphi of (3.84) projected on P2");
+  else
+    r.line("  interface force", fmt(cap) + " mu grad phi (2.8; 3 sigma/(2 sqrt2) = 1/Ca"
+                                    + (f.surface_tension ? ", sigma " + fmt(*f.surface_tension)
+                                                         : std::string(" from numbers.Ca"))
+                                    + ")");
+  std::string walls;
+  for (int i = 0; i < 2 * dim; ++i)
+  {
+    const WallSpec& w = f.walls[i];
+    walls += std::string(i ? ", " : "") + side_names[i] + " " + to_string(w.type);
+    if (w.type == WallType::moving)
+      walls += " " + vector_text(w.velocity, dim);
+  }
+  r.line("  walls", walls);
+  if (!f.petsc.empty())
+  {
+    std::string opts;
+    for (const auto& [k, v] : f.petsc)
+      opts += (opts.empty() ? "" : " ") + ("-flow_" + k) + (v.empty() ? "" : " " + v);
+    r.line("  solver", opts);
+  }
+}
+
 } // namespace
 
 long number_of_steps(const Scene& s)
@@ -159,6 +211,11 @@ std::string check_report(const Scene& s)
   if (n.time_scale_s)
     r.line("time scale", "L/V = " + fmt(*n.time_scale_s) + " s; end time "
                              + fmt(s.numerics.end_time * *n.time_scale_s) + " s");
+
+  if (s.flow)
+    flow_report(s, r);
+  else
+    r.line("flow", "none (phase field only)");
 
   const double eps = s.numerics.epsilon;
   const int levels = required_levels(s);

@@ -22,7 +22,12 @@ void read_output(const Section& top, Scene& s)
   if (!o.has("fields"))
     return;
 
-  const std::vector<std::string> allowed = model_fields(s.phase_field.model);
+  std::vector<std::string> allowed = model_fields(s.phase_field.model);
+  if (s.flow)
+  {
+    allowed.push_back("v"); // velocity and pressure of the flow
+    allowed.push_back("p");
+  }
   out.fields = o.strings("fields");
   const Value v = o.value("fields");
   for (std::size_t i = 0; i < out.fields.size(); ++i)
@@ -30,7 +35,8 @@ void read_output(const Section& top, Scene& s)
     const std::string& f = out.fields[i];
     if (std::find(allowed.begin(), allowed.end(), f) == allowed.end())
       v.element(i).fail("field \"" + f + "\" is not solved for by model "
-                        + to_string(s.phase_field.model) + "; allowed: " + join(allowed));
+                        + to_string(s.phase_field.model) + (s.flow ? " and the flow" : "")
+                        + "; allowed: " + join(allowed));
     if (std::find(out.fields.begin(), out.fields.begin() + i, f) != out.fields.begin() + i)
       v.element(i).fail("field \"" + f + "\" is listed twice");
   }

@@ -1,5 +1,6 @@
 // Names and small queries on the scene data model.
 #include "scene/Scene.h"
+#include <cmath>
 
 namespace cellphase::scene
 {
@@ -54,6 +55,34 @@ bool is_helfrich(Model m)
 {
   return m == Model::helfrich_lagrange || m == Model::helfrich_penalty
          || m == Model::helfrich_hm1;
+}
+
+const char* to_string(WallType w)
+{
+  switch (w)
+  {
+  case WallType::no_slip: return "no_slip";
+  case WallType::moving: return "moving";
+  case WallType::free_slip: return "free_slip";
+  case WallType::open: return "open";
+  }
+  return "unknown";
+}
+
+bool couples_to_flow(Model m) { return m == Model::cahn_hilliard || is_helfrich(m); }
+
+double flow_reynolds(const Scene& s)
+{
+  return s.flow && s.flow->equations == FlowEquations::navier_stokes ? s.numbers.Re : 0.0;
+}
+
+double flow_capillary(const Scene& s)
+{
+  if (is_helfrich(s.phase_field.model))
+    return 1.0;
+  if (s.flow && s.flow->surface_tension)
+    return 3 * *s.flow->surface_tension / (2 * std::sqrt(2.0));
+  return 1 / s.numbers.Ca;
 }
 
 } // namespace cellphase::scene

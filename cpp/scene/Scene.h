@@ -123,6 +123,47 @@ struct Output
   Checkpoints checkpoints;
 };
 
+/// Which momentum equation the flow solves (section 2.8, (3.17)).
+enum class FlowEquations
+{
+  stokes,        ///< Re = 0: quasi-steady Stokes, no inertia
+  navier_stokes  ///< semi-implicit Navier-Stokes (section 5.3, step 1)
+};
+
+/// Velocity condition on one side of the box.
+enum class WallType
+{
+  no_slip,   ///< v = 0
+  moving,    ///< v = the wall's tangential velocity
+  free_slip, ///< v.n = 0, no tangential stress
+  open       ///< traction-free ((2 eta D - p I) n = 0)
+};
+
+struct WallSpec
+{
+  WallType type = WallType::no_slip;
+  std::array<double, 3> velocity{0, 0, 0}; ///< moving walls
+};
+
+/// Sides of the box in the order of the flow module: left/right (x), bottom/top (y),
+/// front/back (z).
+const std::array<const char*, 6> side_names{"left", "right", "bottom", "top", "front", "back"};
+
+/// The two-phase flow coupled to the phase field (section 2.8, 3.4.2, 3.5), in the thesis'
+/// dimensionless scaling (3.17): Re rho (d_t v + v.grad v) + grad p = div(2 eta D) +
+/// rho gravity + force + (dE/dphi) grad phi, with rho, eta interpolated in phi (2.56).
+struct Flow
+{
+  FlowEquations equations = FlowEquations::navier_stokes;
+  std::array<double, 2> density{1, 1};   ///< relative to the reference: {outside, inside}
+  std::array<double, 2> viscosity{1, 1}; ///< relative to the reference: {outside, inside}
+  std::array<double, 3> gravity{0, 0, 0}; ///< body force per unit relative density
+  std::array<double, 3> force{0, 0, 0};   ///< constant body force density
+  std::optional<double> surface_tension;  ///< sigma (dimensionless); default from Ca
+  std::array<WallSpec, 6> walls;          ///< by side, see side_names
+  std::map<std::string, std::string> petsc; ///< options of the flow solver (prefix flow_)
+};
+
 struct Scene
 {
   std::string source;                ///< file the scene came from
@@ -136,6 +177,7 @@ struct Scene
   Numbers numbers;
   Numerics numerics;
   Output output;
+  std::optional<Flow> flow;           ///< absent: no flow module at all
 };
 
 const char* to_string(Model m);
@@ -143,5 +185,15 @@ const char* to_string(Linearisation l);
 /// Fields a model solves for, in the order of its mixed space (phi first).
 std::vector<std::string> model_fields(Model m);
 bool is_helfrich(Model m);
+const char* to_string(WallType w);
+/// Models the flow can be coupled to (they have the advection term and a chemical
+/// potential for the interface force): cahn_hilliard (2.8), the Helfrich models
+/// (Navier-Stokes-Helfrich: H^-1 (3.59)-(3.64), L2 with multipliers/penalties (3.81)-(3.85)).
+bool couples_to_flow(Model m);
+/// Re of the momentum equation: 0 for Stokes (explicitly or because numbers.Re = 0).
+double flow_reynolds(const Scene& s);
+/// Prefactor of the interface force (dE/dphi) grad phi: 3 sigma / (2 sqrt2) = 1/Ca (3.13)
+/// for Cahn-Hilliard (mu unscaled there), 1 for the Helfrich models (dE/dphi itself).
+double flow_capillary(const Scene& s);
 
 } // namespace cellphase::scene

@@ -13,7 +13,8 @@ void read_phase_field(const yaml::Section& top, Scene& s);  ///< phase_field
 void read_numbers(const yaml::Section& top, Scene& s);      ///< numbers or units
 void read_numerics(const yaml::Section& top, Scene& s);     ///< numerics
 void read_cells(const yaml::Section& top, Scene& s);        ///< cells (shapes only)
-void read_output(const yaml::Section& top, Scene& s);       ///< output
+void read_flow(const yaml::Section& top, Scene& s);         ///< flow (optional)
+void read_output(const yaml::Section& top, Scene& s);       ///< output (after flow)
 /// How messages and reports name a cell: cells[1], or cells[1] ("rbc") if it has a name.
 std::string cell_label(std::size_t i, const Cell& c);
 /// Checks across sections: cells inside the domain and disjoint, mesh resolution reachable.

@@ -47,10 +47,17 @@ Errors solve_mms(int n, bool helfrich)
                                                    {"Be", Be}, {"H0", H0}, {"S", 2.0},
                                                    {"lam_v", 0.0}, {"lam_a", 0.0}})
     c[k] = std::make_shared<Constant>(v);
+  // No flow: the advection velocity is zero.
+  auto v = std::make_shared<Function>(
+      compat::create_space(helfrich ? functionspace_form_mms_helfrich_a
+                                    : functionspace_form_mms_cahn_hilliard_a,
+                           "v", mesh));
+  v->x()->set(0.0);
+  CoefficientMap coeffs{{"u0", u0}, {"v", v}};
   auto a = compat::create_form(helfrich ? *form_mms_helfrich_a : *form_mms_cahn_hilliard_a,
-                               {W, W}, {{"u0", u0}}, c);
+                               {W, W}, coeffs, c);
   auto L = compat::create_form(helfrich ? *form_mms_helfrich_L_mms : *form_mms_cahn_hilliard_L_mms,
-                               {W}, {{"u0", u0}}, c);
+                               {W}, coeffs, c);
   dolfinx::la::petsc::Matrix A(dolfinx::fem::petsc::create_matrix(*a), false);
   MatZeroEntries(A.mat());
   dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(A.mat(), ADD_VALUES), *a, {});

@@ -1,0 +1,129 @@
+// flow: the two-phase flow coupled to the phase field (section 2.8, 3.4.2). Absent: no flow.
+#include "scene/Sections.h"
+#include <algorithm>
+
+namespace cellphase::scene
+{
+using namespace yaml;
+
+namespace
+{
+/// inside/outside pair of positive numbers; returned as {outside, inside}.
+std::array<double, 2> read_pair(const Section& f, const std::string& key)
+{
+  std::array<double, 2> out{1, 1};
+  if (!f.has(key))
+    return out;
+  const Section p = f.section(key);
+  p.allow_only({"inside", "outside"});
+  out[0] = p.number("outside", out[0], positive());
+  out[1] = p.number("inside", out[1], positive());
+  return out;
+}
+
+std::array<double, 3> read_vector(const Section& f, const std::string& key, int dim)
+{
+  std::array<double, 3> out{0, 0, 0};
+  if (!f.has(key))
+    return out;
+  const auto v = f.numbers(key, {std::size_t(dim)}, any());
+  std::copy(v.begin(), v.end(), out.begin());
+  return out;
+}
+
+const std::vector<std::pair<std::string, WallType>> wall_types{
+    {"no_slip", WallType::no_slip},
+    {"free_slip", WallType::free_slip},
+    {"moving", WallType::moving},
+    {"open", WallType::open}};
+
+WallSpec read_wall(const Section& walls, const std::string& side, int dim)
+{
+  WallSpec w;
+  const Value v = walls.value(side);
+  if (v.node.IsScalar())
+  {
+    w.type = walls.choice<WallType>(side, w.type, wall_types);
+    if (w.type == WallType::moving)
+      v.fail("a moving wall needs its velocity: write " + side
+             + ": {type: moving, velocity: [..]}");
+    return w;
+  }
+  const Section s = walls.section(side);
+  s.allow_only({"type", "velocity"});
+  if (!s.has("type"))
+    s.fail("type", "missing; choose one of no_slip, free_slip, moving, open");
+  w.type = s.choice<WallType>("type", w.type, wall_types);
+  if (w.type == WallType::moving)
+  {
+    if (!s.has("velocity"))
+      s.fail("velocity", "missing; a moving wall needs its velocity (a list of "
+                             + std::to_string(dim) + " numbers)");
+    const auto u = s.numbers("velocity", {std::size_t(dim)}, any());
+    std::copy(u.begin(), u.end(), w.velocity.begin());
+  }
+  else if (s.has("velocity"))
+    s.fail("velocity", "only a moving wall has a velocity (type is " + std::string(to_string(w.type))
+                           + ")");
+  return w;
+}
+
+/// PETSc options pass through as text (same shape checks as numerics.petsc).
+void read_flow_petsc(const Section& p, std::map<std::string, std::string>& out)
+{
+  p.allow_only(p.keys());
+  for (const std::string& key : p.keys())
+  {
+    const Value v = p.value(key);
+    if (key.empty() || key[0] == '-')
+      v.fail("write PETSc option names without the leading '-' (e.g. ksp_type)");
+    if (v.node.IsNull())
+      out[key] = "";
+    else if (v.node.IsScalar())
+      out[key] = v.node.Scalar();
+    else
+      v.fail("found " + v.found() + ", expected a single value (text, number or boolean)");
+  }
+}
+} // namespace
+
+void read_flow(const Section& top, Scene& s)
+{
+  if (!top.has("flow"))
+    return;
+  const Section f = top.section("flow");
+  f.allow_only({"equations", "density", "viscosity", "gravity", "force", "surface_tension",
+                "walls", "petsc"});
+  const Model m = s.phase_field.model;
+  if (!couples_to_flow(m))
+    top.fail("flow", std::string("phase_field.model ") + to_string(m)
+                         + " cannot be coupled to the flow; use cahn_hilliard (surface "
+                           "tension, 2.8) or a Helfrich model (3.59)-(3.64), (3.81)-(3.85)");
+  const int dim = s.domain.dim;
+  Flow flow;
+  flow.equations = f.choice<FlowEquations>(
+      "equations", flow.equations,
+      {{"stokes", FlowEquations::stokes}, {"navier_stokes", FlowEquations::navier_stokes}});
+  flow.density = read_pair(f, "density");
+  flow.viscosity = read_pair(f, "viscosity");
+  flow.gravity = read_vector(f, "gravity", dim);
+  flow.force = read_vector(f, "force", dim);
+  if (f.has("surface_tension"))
+  {
+    if (is_helfrich(m))
+      f.fail("surface_tension", std::string("model ") + to_string(m)
+                                    + " takes its interface force from its energy "
+                                      "(3.62)/(3.84); surface tension is only for cahn_hilliard");
+    flow.surface_tension = f.number("surface_tension", non_negative());
+  }
+  const Section walls = f.section("walls");
+  std::vector<std::string> sides(side_names.begin(), side_names.begin() + 2 * dim);
+  walls.allow_only(sides);
+  for (int i = 0; i < 2 * dim; ++i)
+    if (walls.has(sides[i]))
+      flow.walls[i] = read_wall(walls, sides[i], dim);
+  read_flow_petsc(f.section("petsc"), flow.petsc);
+  s.flow = flow;
+}
+
+} // namespace cellphase::scene
