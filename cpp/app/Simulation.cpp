@@ -76,6 +76,7 @@ StepTimings Simulation::step(double dt)
     t.assemble += f.assemble;
     t.factorise += f.factorise;
     t.solve += f.solve;
+    t.flow = f.assemble + f.factorise + f.solve;
   }
   const StepTimings p = module_.step(dt);
   t.assemble += p.assemble;

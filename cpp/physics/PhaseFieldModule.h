@@ -19,6 +19,7 @@ using FieldMap = std::map<std::string, std::shared_ptr<Function>>;
 struct StepTimings
 {
   double assemble = 0, factorise = 0, solve = 0;
+  double flow = 0; ///< the flow's part of the three above (coupled runs)
 };
 
 /// Targets of the constraints, fixed at the start: V0 = int phi (3.10), A0 = E_CH (3.11).

@@ -9,7 +9,7 @@ OLD = ("time,step,volume,surface,helfrich_energy,total_energy,energy_ch,center_x
        "center_z,circularity,phi_min,phi_max,lambda_volume,lambda_area,dofs,"
        "remesh_volume_change,wall_assembly,wall_factorise,wall_solve,wall_remesh,wall_output")
 NEW = ("kinetic_energy,total_energy_kinetic,cell_velocity_x,cell_velocity_y,cell_velocity_z,"
-       "rise_velocity,inclination_deg")
+       "rise_velocity,inclination_deg,wall_flow")
 
 
 def test_old_columns_first_then_flow_columns_and_inclination_of_a_rotated_ellipse(tmp_path):
