@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Rising bubble benchmark of Hysing et al. (2009), test cases 1 and 2.
 
-Runs demos/rising-bubble-case<N>/scene.yaml at three mesh levels (epsilon, and with it the
-finest cell, and the time step smaller by sqrt(2) from level to level) to t = 3 and writes:
+Runs demos/rising-bubble-case<N>/scene.yaml at three mesh levels (epsilon, the base cells
+and with them the finest cell, and the time step smaller by sqrt(2) from level to level)
+to t = 3 and writes:
   benchmarks/results/rising-bubble-case<N>.csv   the benchmark quantities per level
   benchmarks/results/rising-bubble-case<N>.md    tables against the published values
   benchmarks/results/rising-bubble-case<N>.png   circularity, rise velocity and centre of
@@ -52,18 +53,21 @@ QUANTITIES = ["circularity_min", "t_circularity_min", "rise_velocity_max",
 CSV_COLUMNS = ["level", "dofs", "wall_time_s"] + QUANTITIES
 
 
-def level_overrides(level, scene_numerics):
-    """Level 0 is the demo; each level divides epsilon and dt by sqrt(2) (the refinement
-    follows epsilon through numerics.mesh.points_across_interface)."""
+def level_overrides(level, scene):
+    """Level 0 is the demo; each level divides epsilon and dt by sqrt(2) and multiplies the
+    base cells per axis by sqrt(2), so that the finest cell shrinks with epsilon (the
+    refinement levels follow from numerics.mesh.points_across_interface)."""
     f = math.sqrt(2) ** level
-    return {"numerics.epsilon": scene_numerics["epsilon"] / f,
-            "numerics.dt": scene_numerics["dt"] / f}
+    nx, ny = scene["domain"]["resolution"][:2]
+    return {"numerics.epsilon": scene["numerics"]["epsilon"] / f,
+            "numerics.dt": scene["numerics"]["dt"] / f,
+            "domain.resolution": f"[{round(nx * f)},{round(ny * f)}]"}
 
 
-def read_numerics(scene):
+def read_scene(scene):
     import yaml
     with open(scene) as f:
-        return yaml.safe_load(f)["numerics"]
+        return yaml.safe_load(f)
 
 
 def read_columns(out):
@@ -78,7 +82,7 @@ def existing(case, level):
     from wall_time.txt, or else estimated as the sum of the step timings."""
     scene = ROOT / "demos" / f"rising-bubble-case{case}" / "scene.yaml"
     out = WORK / f"case{case}-level{level}"
-    overrides = level_overrides(level, read_numerics(scene))
+    overrides = level_overrides(level, read_scene(scene))
     cols = read_columns(out)
     wall_file = out / "wall_time.txt"
     if wall_file.exists():
@@ -93,7 +97,7 @@ def run(case, level, end_time, ranks):
     scene = ROOT / "demos" / f"rising-bubble-case{case}" / "scene.yaml"
     out = WORK / f"case{case}-level{level}"
     shutil.rmtree(out, ignore_errors=True)
-    overrides = level_overrides(level, read_numerics(scene))
+    overrides = level_overrides(level, read_scene(scene))
     if end_time is not None:
         overrides["numerics.end_time"] = end_time
     args = [str(EXE), "run", str(scene), "--set", f"output.directory={out}",
