@@ -192,17 +192,33 @@ void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
   fem::set_bc<T>(b.mutable_array(), bcs);
 }
 
-void PeriodicConstraint::backsubstitute(la::Vector<T>& x, Function& u) const
+void PeriodicConstraint::assemble_load(la::Vector<T>& b, const Form& L, const BCs& bcs) const
 {
+  b.set(0.0);
   if (mpc_)
-  {
-    x.scatter_fwd(); // masters owned elsewhere are ghosts of x
-    // backsubstitution adds to the slave value, so start from zero.
-    mpc_->homogenize(x.mutable_array());
-    mpc_->backsubstitution(x.mutable_array());
+    dolfinx_mpc::assemble_vector(b.mutable_array(), L, mpc_);
+  else
+    fem::assemble_vector(b.mutable_array(), L);
+  b.scatter_rev(std::plus<T>());
+  fem::set_bc<T>(b.mutable_array(), bcs, 0.0);
+}
+
+void PeriodicConstraint::backsubstitute(la::Vector<T>& x, bool homogeneous) const
+{
+  if (!mpc_)
+    return;
+  x.scatter_fwd(); // masters owned elsewhere are ghosts of x
+  // backsubstitution adds to the slave value, so start from zero.
+  mpc_->homogenize(x.mutable_array());
+  mpc_->backsubstitution(x.mutable_array());
+  if (!homogeneous)
     for (auto [slave, value] : constants_)
       x.mutable_array()[slave] += value;
-  }
+}
+
+void PeriodicConstraint::backsubstitute(la::Vector<T>& x, Function& u) const
+{
+  backsubstitute(x, false);
   // The constrained index map extends V's ghosts at the end: V's part is a prefix.
   auto out = u.x()->mutable_array();
   std::copy_n(x.array().begin(), out.size(), out.begin());
