@@ -158,8 +158,11 @@ void PeriodicConstraint::assemble_matrix(Mat A, const Form& a, const BCs& bcs) c
     dolfinx_mpc::assemble_matrix(add_block, add, a, mpc_, mpc_, bcs, 1.0);
   else
     fem::assemble_matrix(add_block, a, bcs);
-  // BC rows and columns were skipped above, so ADD of the diagonal needs no flush.
-  fem::set_diagonal<T>(add, *V_, bcs);
+  // INSERT (after a flush) rather than ADD: a dof in two BCs (a corner of two walls)
+  // must still get a diagonal of 1, not 2.
+  MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
+  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *V_, bcs);
   MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
   MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
 }
