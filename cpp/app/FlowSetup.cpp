@@ -33,6 +33,7 @@ FlowParameters flow_parameters(const scene::Scene& scene)
     }
     p.walls.push_back(wall);
   }
+  p.periodic = scene.domain.periodic; // their sides are open above: no wall there
   p.petsc = f.petsc;
   return p;
 }

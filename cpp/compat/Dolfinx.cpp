@@ -287,6 +287,21 @@ std::vector<std::int32_t> boundary_dofs(const Space& V)
   return fem::locate_dofs_topological(V, tdim - 1, std::span<const std::int32_t>(facets));
 }
 
+std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, const Space& V,
+                                                       const std::vector<std::int32_t>& facets)
+{
+  const int tdim = W.mesh()->topology().dim();
+  auto Wsub = W.sub({sub});
+  return fem::locate_dofs_topological({*Wsub, V}, tdim - 1,
+                                      std::span<const std::int32_t>(facets));
+}
+
+std::vector<std::int32_t> boundary_dofs(const Space& V, const std::vector<std::int32_t>& facets)
+{
+  const int tdim = V.mesh()->topology().dim();
+  return fem::locate_dofs_topological(V, tdim - 1, std::span<const std::int32_t>(facets));
+}
+
 std::vector<double> cell_vertex_coordinates(const Mesh& m, std::int32_t cell)
 {
   const auto& dofmap = m.geometry().dofmap();

@@ -84,6 +84,11 @@ std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, 
 /// Dofs of a (non-mixed) space on the domain boundary.
 std::vector<std::int32_t> boundary_dofs(const Space& V);
 
+/// The same on the given boundary facets only (e.g. the non-periodic sides).
+std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, const Space& V,
+                                                       const std::vector<std::int32_t>& facets);
+std::vector<std::int32_t> boundary_dofs(const Space& V, const std::vector<std::int32_t>& facets);
+
 /// Sub-space of a mixed space (component path such as {0} or {0, 1}), its collapsed copy
 /// and the map from the collapsed space's local dofs (unrolled) to the mixed space's.
 struct CollapsedSpace

@@ -158,8 +158,11 @@ void PeriodicConstraint::assemble_matrix(Mat A, const Form& a, const BCs& bcs) c
     dolfinx_mpc::assemble_matrix(add_block, add, a, mpc_, mpc_, bcs, 1.0);
   else
     fem::assemble_matrix(add_block, a, bcs);
-  // BC rows and columns were skipped above, so ADD of the diagonal needs no flush.
-  fem::set_diagonal<T>(add, *V_, bcs);
+  // INSERT (after a flush) rather than ADD: a dof in two BCs (a corner of two walls)
+  // must still get a diagonal of 1, not 2.
+  MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
+  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *V_, bcs);
   MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
   MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
 }
@@ -192,17 +195,33 @@ void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
   fem::set_bc<T>(b.mutable_array(), bcs);
 }
 
-void PeriodicConstraint::backsubstitute(la::Vector<T>& x, Function& u) const
+void PeriodicConstraint::assemble_load(la::Vector<T>& b, const Form& L, const BCs& bcs) const
 {
+  b.set(0.0);
   if (mpc_)
-  {
-    x.scatter_fwd(); // masters owned elsewhere are ghosts of x
-    // backsubstitution adds to the slave value, so start from zero.
-    mpc_->homogenize(x.mutable_array());
-    mpc_->backsubstitution(x.mutable_array());
+    dolfinx_mpc::assemble_vector(b.mutable_array(), L, mpc_);
+  else
+    fem::assemble_vector(b.mutable_array(), L);
+  b.scatter_rev(std::plus<T>());
+  fem::set_bc<T>(b.mutable_array(), bcs, 0.0);
+}
+
+void PeriodicConstraint::backsubstitute(la::Vector<T>& x, bool homogeneous) const
+{
+  if (!mpc_)
+    return;
+  x.scatter_fwd(); // masters owned elsewhere are ghosts of x
+  // backsubstitution adds to the slave value, so start from zero.
+  mpc_->homogenize(x.mutable_array());
+  mpc_->backsubstitution(x.mutable_array());
+  if (!homogeneous)
     for (auto [slave, value] : constants_)
       x.mutable_array()[slave] += value;
-  }
+}
+
+void PeriodicConstraint::backsubstitute(la::Vector<T>& x, Function& u) const
+{
+  backsubstitute(x, false);
   // The constrained index map extends V's ghosts at the end: V's part is a prefix.
   auto out = u.x()->mutable_array();
   std::copy_n(x.array().begin(), out.size(), out.begin());

@@ -48,6 +48,11 @@ public:
   /// After a solve into x (from create_vector): slave values from their masters, then
   /// copied into u (a function on V).
   void backsubstitute(dolfinx::la::Vector<T>& x, Function& u) const;
+  /// The same without the copy: x then holds the whole solution in V's numbering (prefix).
+  /// `homogeneous`: x solves a load with zero Dirichlet values (no constant slave parts).
+  void backsubstitute(dolfinx::la::Vector<T>& x, bool homogeneous = false) const;
+  /// b <- L with zero values at the Dirichlet dofs of bcs (unit loads): no lifting.
+  void assemble_load(dolfinx::la::Vector<T>& b, const Form& L, const BCs& bcs) const;
 
 private:
   std::shared_ptr<const Space> V_;

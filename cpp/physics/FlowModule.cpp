@@ -104,9 +104,12 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
 
   build_bcs();
   bind_forms();
-  A_ = create_matrix(*a_);
-  b_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
-  x_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+  // The BC dofs (walls, the pinned pressure) stay Dirichlet dofs, never slaves.
+  const auto box = compat::bounding_box(*mesh_);
+  periodic_ = std::make_unique<PeriodicConstraint>(W_, box[0], box[1], params_.periodic, bcs_);
+  A_ = std::make_unique<la::petsc::Matrix>(periodic_->create_matrix(*a_));
+  b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+  x_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   solver_ = std::make_unique<LinearSolver>(comm_, "flow_", params_.petsc);
   factorised_ = false;
 }
@@ -130,11 +133,16 @@ void FlowModule::build_bcs()
   std::vector<Wall> walls = params_.walls;
   std::stable_sort(walls.begin(), walls.end(),
                    [&](const Wall& a, const Wall& b) { return rank(a.kind) < rank(b.kind); });
+  // A periodic side closes the box too: what leaves through it comes back in.
+  for (int a : params_.periodic)
+    closed.at(2 * a) = closed.at(2 * a + 1) = true;
   for (const Wall& wall : walls)
   {
     const int axis = axis_of(wall.side);
     if (axis >= dim)
       throw std::invalid_argument("flow: front/back walls need a 3D mesh");
+    if (std::count(params_.periodic.begin(), params_.periodic.end(), axis))
+      throw std::invalid_argument("flow: a wall on a side of a periodic axis");
     closed[int(wall.side)] = true;
     const double plane = is_upper(wall.side) ? hi[axis] : lo[axis];
     auto facets = compat::boundary_facets(
@@ -177,6 +185,8 @@ void FlowModule::build_bcs()
   // PETSc null space, but that depends on a pivot threshold; pinning one pressure dof makes
   // the matrix regular. This is exact: with v.n = 0 (or zero net flux) on the boundary the
   // dropped continuity row is the sum of the others. The mean is removed after the solve.
+  // Periodic axes: the pinned dof is at the lower corner, on the min faces, which hold
+  // the masters; the constraint keeps Dirichlet dofs out of the slaves anyway.
   pinned_ = std::all_of(closed.begin(), closed.end(), [](bool c) { return c; });
   if (pinned_)
   {
@@ -263,8 +273,8 @@ FlowTimings FlowModule::step(double dt)
   dt_->value[0] = dt;
   t.factorised = matrix_outdated(dt);
   if (t.factorised)
-    assemble_matrix(A_->mat(), *a_, bcs_);
-  assemble_rhs(*b_, *L_, a_, bcs_);
+    periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
+  periodic_->assemble_vector(*b_, *L_, a_, bcs_);
   t.assemble = seconds_since(t0);
   if (t.factorised)
   {
@@ -275,6 +285,7 @@ FlowTimings FlowModule::step(double dt)
   }
   auto t1 = Clock::now();
   solver_->solve(*b_, *x_, "the flow");
+  periodic_->backsubstitute(*x_); // slave values from their masters
   store_solution();
   t.solve = seconds_since(t1);
   return t;

@@ -4,6 +4,7 @@
 #pragma once
 #include "compat/Dolfinx.h"
 #include "physics/FormTable.h"
+#include "compat/Periodic.h"
 #include "solve/LinearSolver.h"
 #include <array>
 #include <map>
@@ -48,6 +49,8 @@ struct FlowParameters
   std::array<double, 3> gravity{0, 0, 0}; ///< times rho(phi)
   std::array<double, 3> force{0, 0, 0};   ///< constant body force density
   std::vector<Wall> walls;
+  /// Periodic axes (0, 1, 2 = x, y, z) of the mesh's bounding box; no walls on their sides.
+  std::vector<int> periodic;
   std::map<std::string, std::string> petsc; ///< options under the prefix flow_
 };
 
@@ -120,6 +123,8 @@ private:
   std::vector<std::shared_ptr<Form>> phase_velocity_;
   double domain_volume_ = 0;
 
+  /// Periodic directions (plain assembly without): rebuilt with the BCs on every mesh.
+  std::unique_ptr<PeriodicConstraint> periodic_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
   std::unique_ptr<LinearSolver> solver_;

@@ -29,6 +29,25 @@ std::unique_ptr<la::petsc::Matrix> assemble_matrix(const Form& a, const BCs& bcs
   return A;
 }
 
+/// Boundary facets on the sides of non-periodic axes: where phi = -1 (2.19) applies.
+std::vector<std::int32_t> wall_facets(const Mesh& mesh, const scene::Domain& d)
+{
+  double extent = 0;
+  for (int a = 0; a < d.dim; ++a)
+    extent = std::max(extent, d.upper[a] - d.lower[a]);
+  const double tol = 1e-8 * extent;
+  return compat::boundary_facets(mesh, [&d, tol](double x, double y, double z)
+                                 {
+                                   const std::array<double, 3> p{x, y, z};
+                                   for (int a = 0; a < d.dim; ++a)
+                                     if (!d.is_periodic(a)
+                                         && (std::abs(p[a] - d.lower[a]) < tol
+                                             || std::abs(p[a] - d.upper[a]) < tol))
+                                       return true;
+                                   return false;
+                                 });
+}
+
 void assemble_rhs(la::Vector<T>& b, const Form& L, const std::shared_ptr<const Form>& a,
                   const BCs& bcs)
 {
@@ -113,23 +132,28 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
     // (their dof numberings differ).
     boundary_value_ = std::make_shared<Function>(names_.size() > 1 ? V_ : W_);
     boundary_value_->x()->set(-1.0);
+    const auto facets = wall_facets(*mesh, scene_.domain);
     if (names_.size() > 1)
       bcs_.push_back(std::make_shared<DirichletBC>(
-          boundary_value_, compat::boundary_dofs(*W_, 0, *V_), W_->sub({0})));
+          boundary_value_, compat::boundary_dofs(*W_, 0, *V_, facets), W_->sub({0})));
     else
-      bcs_.push_back(std::make_shared<DirichletBC>(boundary_value_, compat::boundary_dofs(*W_)));
+      bcs_.push_back(
+          std::make_shared<DirichletBC>(boundary_value_, compat::boundary_dofs(*W_, facets)));
   }
+  periodic_ = std::make_unique<PeriodicConstraint>(W_, scene_.domain.lower, scene_.domain.upper,
+                                                   scene_.domain.periodic, bcs_);
 
   bind_forms();
   A_.reset();
   matrix_current_ = false;
   solver_ = std::make_unique<LinearSolver>(comm_, "phasefield_", scene_.numerics.petsc);
-  b_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
-  x_ = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+  // From the constraint: with periodic axes their ghosts include remote masters.
+  b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+  x_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   for (auto& load : loads_)
   {
-    load.x = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
-    load.b = std::make_unique<la::Vector<T>>(W_->dofmap()->index_map, W_->dofmap()->index_map_bs());
+    load.x = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+    load.b = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   }
 
   if (forms_.a_mu && fields.find("mu") == fields.end())
@@ -291,10 +315,7 @@ void PhaseFieldModule::assemble_constraint_loads(std::vector<const la::Vector<T>
     if (load.kind == UnitLoad::volume && load.current)
       continue;
     load.current = true;
-    load.b->set(0.0);
-    fem::assemble_vector(load.b->mutable_array(), *load.form);
-    load.b->scatter_rev(std::plus<T>());
-    fem::set_bc<T>(load.b->mutable_array(), bcs_, 0.0);
+    periodic_->assemble_load(*load.b, *load.form, bcs_);
     rhs.push_back(load.b.get());
     solutions.push_back(load.x.get());
   }
@@ -389,12 +410,11 @@ StepTimings PhaseFieldModule::step(double dt)
   const bool rebuild = !stabilised_ || !matrix_current_ || flowing_;
   if (rebuild)
   {
-    if (A_)
-      assemble_matrix(*a_, bcs_, A_.get());
-    else
-      A_ = assemble_matrix(*a_, bcs_, nullptr);
+    if (!A_) // the sparsity (and MUMPS' analysis) is kept until the next mesh
+      A_ = std::make_unique<la::petsc::Matrix>(periodic_->create_matrix(*a_));
+    periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
   }
-  assemble_rhs(*b_, *L_, a_, bcs_);
+  periodic_->assemble_vector(*b_, *L_, a_, bcs_);
   t.assemble = seconds_since(t0);
   if (rebuild)
   {
@@ -412,6 +432,9 @@ StepTimings PhaseFieldModule::step(double dt)
   t1 = Clock::now();
   solver_->solve(rhs, solutions,
                  std::string("phase field (") + scene::to_string(scene_.phase_field.model) + ")");
+  // Slave values of every solution; the unit loads have zero Dirichlet values.
+  for (std::size_t i = 0; i < solutions.size(); ++i)
+    periodic_->backsubstitute(*solutions[i], i > 0);
   if (!loads_.empty())
     apply_constraint_loads();
   scatter_state();

@@ -4,6 +4,7 @@
 #include "compat/Dolfinx.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
+#include "compat/Periodic.h"
 #include "solve/LinearSolver.h"
 #include <map>
 #include <memory>
@@ -123,6 +124,8 @@ private:
   std::unique_ptr<dolfinx::la::Vector<T>> volume_weights_, area_weights_;
   double phi_dot(const dolfinx::la::Vector<T>& weights, const dolfinx::la::Vector<T>& x,
                  bool minus_phi_n) const;
+  /// Periodic directions of the scene (plain assembly without); rebuilt on every mesh.
+  std::unique_ptr<PeriodicConstraint> periodic_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
   std::unique_ptr<LinearSolver> solver_;

@@ -178,9 +178,17 @@ std::string check_report(const Scene& s)
   r.line("dimension", std::to_string(dim) + "D (" + (dim == 2 ? "triangles" : "tetrahedra")
                           + ")");
   r.line("domain", domain + ", " + cells_per_axis + " base cells");
+  if (!d.periodic.empty())
+  {
+    std::string axes;
+    for (int a : d.periodic)
+      axes += std::string(axes.empty() ? "" : ", ") + "xyz"[a];
+    r.line("periodic", axes + " (dolfinx_mpc; all fields, flow sides on these axes open)");
+  }
   r.line("boundary", std::string("phi ")
                          + (s.phi_boundary == PhiBoundary::dirichlet ? "dirichlet (phi = -1)"
-                                                                     : "neumann"));
+                                                                     : "neumann")
+                         + (d.periodic.empty() ? "" : " on the non-periodic sides"));
   r.line("cells", std::to_string(s.cells.size()));
   for (std::size_t i = 0; i < s.cells.size(); ++i)
     r.line("  " + s.cells[i].name, shape_text(s.cells[i], dim));

@@ -64,7 +64,10 @@ void check_geometry(const Section& top, const Scene& s)
                      + ", closer than 3 epsilon = " + fmt(margin)
                      + " to the domain boundary; the cell and a margin of 3 epsilon around "
                        "it must lie inside the domain "
-                     + domain_text(d));
+                     + domain_text(d)
+                     + (d.periodic.empty() ? ""
+                                           : " (also on periodic axes: a cell may not start "
+                                             "across a periodic face)"));
   };
 
   std::vector<SignedDistance> r;

@@ -1,15 +1,47 @@
 #include "scene/Sections.h"
+#include <algorithm>
 
 namespace cellphase::scene
 {
 using namespace yaml;
+
+namespace
+{
+/// domain.periodic: a list of distinct axis names of the domain's dimension.
+void read_periodic(const Section& d, Domain& domain)
+{
+  domain.periodic.clear();
+  if (!d.has("periodic"))
+    return;
+  const std::vector<std::string> names{"x", "y", "z"};
+  const std::vector<std::string> allowed(names.begin(), names.begin() + domain.dim);
+  const Value v = d.value("periodic");
+  if (!v.node.IsSequence())
+    v.fail("found " + v.found() + ", expected a list of axes out of " + join(allowed)
+           + ", e.g. [x]");
+  for (std::size_t i = 0; i < v.node.size(); ++i)
+  {
+    const Value e = v.element(i);
+    const std::string axis = e.node.IsScalar() ? e.string() : "";
+    const auto it = std::find(allowed.begin(), allowed.end(), axis);
+    if (it == allowed.end())
+      e.fail("found " + e.found() + ", expected one of the axes " + join(allowed) + " of this "
+             + std::to_string(domain.dim) + "D domain");
+    const int a = int(it - allowed.begin());
+    if (std::find(domain.periodic.begin(), domain.periodic.end(), a) != domain.periodic.end())
+      e.fail("axis " + axis + " is listed twice");
+    domain.periodic.push_back(a);
+  }
+  std::sort(domain.periodic.begin(), domain.periodic.end());
+}
+} // namespace
 
 void read_domain(const Section& top, Scene& s)
 {
   if (!top.has("domain"))
     top.fail("domain", "missing; every scene needs a domain with lower, upper and resolution");
   const Section d = top.section("domain");
-  d.allow_only({"lower", "upper", "resolution"});
+  d.allow_only({"lower", "upper", "resolution", "periodic"});
 
   // The first list given fixes the dimension; the others must have the same length.
   std::string first;
@@ -59,6 +91,7 @@ void read_domain(const Section& top, Scene& s)
       d.fail("upper", "on axis " + std::to_string(i) + " upper (" + fmt(s.domain.upper[i])
                           + ") is not greater than lower (" + fmt(s.domain.lower[i])
                           + "); upper must exceed lower on every axis");
+  read_periodic(d, s.domain);
 }
 
 void read_boundary(const Section& top, Scene& s)

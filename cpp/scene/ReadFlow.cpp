@@ -120,8 +120,21 @@ void read_flow(const Section& top, Scene& s)
   std::vector<std::string> sides(side_names.begin(), side_names.begin() + 2 * dim);
   walls.allow_only(sides);
   for (int i = 0; i < 2 * dim; ++i)
+  {
+    // A periodic axis has no sides: the flow leaves through one face and enters through
+    // the other, so its sides get no condition (and a wall there is a contradiction).
+    if (s.domain.is_periodic(i / 2))
+    {
+      if (walls.has(sides[i]))
+        walls.fail(sides[i], std::string("domain.periodic has axis ") + "xyz"[i / 2]
+                                 + ", so the " + sides[i]
+                                 + " side is not a boundary; remove this wall or the axis");
+      flow.walls[i].type = WallType::open;
+      continue;
+    }
     if (walls.has(sides[i]))
       flow.walls[i] = read_wall(walls, sides[i], dim);
+  }
   read_flow_petsc(f.section("petsc"), flow.petsc);
   s.flow = flow;
 }

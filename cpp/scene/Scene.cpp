@@ -1,6 +1,7 @@
 // Names and small queries on the scene data model.
 #include "scene/Scene.h"
 #include <cmath>
+#include <algorithm>
 
 namespace cellphase::scene
 {
@@ -11,6 +12,11 @@ double Domain::volume() const
   for (int i = 0; i < dim; ++i)
     v *= upper[i] - lower[i];
   return v;
+}
+
+bool Domain::is_periodic(int axis) const
+{
+  return std::find(periodic.begin(), periodic.end(), axis) != periodic.end();
 }
 
 const char* to_string(Model m)

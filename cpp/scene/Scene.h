@@ -18,6 +18,9 @@ struct Domain
   std::array<double, 3> lower{0, 0, 0};
   std::array<double, 3> upper{1, 1, 0};
   std::array<int, 3> resolution{16, 16, 0}; ///< base cells per axis
+  /// Periodic axes (0, 1, 2 = x, y, z), sorted: the max face is identified with the min face.
+  std::vector<int> periodic;
+  bool is_periodic(int axis) const;
   double volume() const;
 };
 

@@ -607,8 +607,8 @@ TEST(SceneErrors, UnknownKeys)
   EXPECT_ERROR(std::string(minimal_scene) + "output: {format: vtk}\n", "output.format: unknown key");
   EXPECT_ERROR(std::string(minimal_scene) + "boundary: {mu: neumann}\n",
                "boundary.mu: unknown key; allowed keys in boundary: phi");
-  EXPECT_ERROR(minimal_with("  resolution: [16, 16]", "  resolution: [16, 16]\n  periodic: true"),
-               "domain.periodic: unknown key");
+  EXPECT_ERROR(minimal_with("  resolution: [16, 16]", "  resolution: [16, 16]\n  periodicity: [x]"),
+               "domain.periodicity: unknown key");
 }
 
 TEST(SceneErrors, WrongTypes)
