@@ -72,12 +72,14 @@ StepTimings Simulation::step(double dt)
   StepTimings t;
   if (flow_)
   {
+    solving_ = "v"; // names the module if its solver fails
     const FlowTimings f = flow_->step(dt);
     t.assemble += f.assemble;
     t.factorise += f.factorise;
     t.solve += f.solve;
     t.flow = f.assemble + f.factorise + f.solve;
   }
+  solving_ = "phi";
   const StepTimings p = module_.step(dt);
   t.assemble += p.assemble;
   t.factorise += p.factorise;
@@ -279,7 +281,14 @@ void Simulation::keep_good_state(const LoopState& at)
   }
 }
 
-void Simulation::fail(const LoopState& at, const std::string& what)
+std::string Simulation::module_name(const std::string& field) const
+{
+  if (field == "v" || field == "p")
+    return "flow module";
+  return std::string("phase-field module (") + scene::to_string(scene_.phase_field.model) + ")";
+}
+
+void Simulation::fail(const LoopState& at, const std::string& module, const std::string& what)
 {
   // Back to the fields at the start of the failed step (same mesh: remeshing happens
   // before a step), then save them as a checkpoint and as output.
@@ -303,9 +312,9 @@ void Simulation::fail(const LoopState& at, const std::string& what)
     saved = std::string("nowhere (") + e.what() + ")";
   }
   throw NumericalFailure(format(
-      "numerical failure in the phase-field module (%s) at step %d, t = %g: %s; the last good "
+      "numerical failure in the %s at step %d, t = %g: %s; the last good "
       "state (step %d, t = %g) is in %s",
-      scene::to_string(scene_.phase_field.model), at.step, at.time, what.c_str(),
+      module.c_str(), at.step, at.time, what.c_str(),
       good_.at.step, good_.at.time, saved.c_str()));
 }
 
@@ -318,19 +327,19 @@ void Simulation::check_health(const LoopState& at, const ObservableValues& v)
       bad |= !std::isfinite(x);
     MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm_);
     if (bad)
-      fail(at, "field " + name + " is not finite (NaN or Inf)");
+      fail(at, module_name(name), "field " + name + " is not finite (NaN or Inf)");
   }
   const auto& limits = scene_.numerics.limits;
   const double phi_abs = std::max(-v.phi_min, v.phi_max);
   if (phi_abs > limits.phi_bound)
-    fail(at, format("field phi reaches %.4g, beyond the bound +-%g (numerics.limits.phi_bound); "
+    fail(at, module_name("phi"), format("field phi reaches %.4g, beyond the bound +-%g (numerics.limits.phi_bound); "
                     "the time step may be too large",
                     v.phi_max > -v.phi_min ? v.phi_max : v.phi_min, limits.phi_bound));
   if (limits.volume_drift && initial_volume_ != 0)
   {
     const double drift = std::abs(v.volume - initial_volume_) / std::abs(initial_volume_);
     if (drift > *limits.volume_drift)
-      fail(at, format("the cell volume drifted by %.3g (relative) from %.6g to %.6g, beyond "
+      fail(at, module_name("phi"), format("the cell volume drifted by %.3g (relative) from %.6g to %.6g, beyond "
                       "numerics.limits.volume_drift = %g",
                       drift, initial_volume_, v.volume, *limits.volume_drift));
   }
@@ -406,7 +415,7 @@ void Simulation::run()
     }
     catch (const SolverError& e)
     {
-      fail({n, at.time + dt}, e.what());
+      fail({n, at.time + dt}, module_name(solving_), e.what());
     }
     at = {n, n == steps ? nu.end_time : at.time + dt};
     record(at, timings, remesh_time, volume_change);

@@ -76,7 +76,9 @@ private:
   /// Throws NumericalFailure (after saving the last good state) if a field is not finite,
   /// phi leaves its bound or the volume drifts beyond the scene's limit.
   void check_health(const LoopState& at, const ObservableValues& v);
-  [[noreturn]] void fail(const LoopState& at, const std::string& what);
+  [[noreturn]] void fail(const LoopState& at, const std::string& module, const std::string& what);
+  /// "flow module" for v and p, "phase-field module (<model>)" for the others.
+  std::string module_name(const std::string& field) const;
   std::string save_checkpoint(const LoopState& at);
   void keep_good_state(const LoopState& at);
   void log(const char* fmt, ...) const;
@@ -93,6 +95,7 @@ private:
   std::unique_ptr<FieldWriter> writer_;
   double initial_volume_ = 0;
   int last_step_ = 0;
+  std::string solving_ = "phi"; ///< a field of the subproblem being solved
   GoodState good_;
 };
 } // namespace cellphase
