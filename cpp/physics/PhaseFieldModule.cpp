@@ -1,4 +1,5 @@
 #include "physics/PhaseFieldModule.h"
+#include "solve/Assemble.h"
 #include "util/Clock.h"
 #include <cmath>
 #include <stdexcept>
@@ -11,23 +12,6 @@ using scene::Model;
 namespace
 {
 std::shared_ptr<Constant> constant(double v) { return std::make_shared<Constant>(v); }
-
-/// Assemble a bilinear form into a new PETSc matrix, with identity rows for the BCs.
-std::unique_ptr<la::petsc::Matrix> assemble_matrix(const Form& a, const BCs& bcs,
-                                                   la::petsc::Matrix* reuse)
-{
-  std::unique_ptr<la::petsc::Matrix> A;
-  if (!reuse)
-    A = std::make_unique<la::petsc::Matrix>(fem::petsc::create_matrix(a), false);
-  Mat m = reuse ? reuse->mat() : A->mat();
-  MatZeroEntries(m);
-  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(m, ADD_VALUES), a, bcs);
-  // BC rows and columns are skipped above, so ADD of the diagonal needs no flush.
-  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(m, ADD_VALUES), *a.function_spaces()[0], bcs);
-  MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY);
-  return A;
-}
 
 /// Boundary facets on the sides of non-periodic axes: where phi = -1 (2.19) applies.
 std::vector<std::int32_t> wall_facets(const Mesh& mesh, const scene::Domain& d)
@@ -48,15 +32,6 @@ std::vector<std::int32_t> wall_facets(const Mesh& mesh, const scene::Domain& d)
                                  });
 }
 
-void assemble_rhs(la::Vector<T>& b, const Form& L, const std::shared_ptr<const Form>& a,
-                  const BCs& bcs)
-{
-  b.set(0.0);
-  fem::assemble_vector(b.mutable_array(), L);
-  fem::apply_lifting<T>(b.mutable_array(), {a}, {bcs}, {}, 1.0);
-  b.scatter_rev(std::plus<T>());
-  fem::set_bc<T>(b.mutable_array(), bcs);
-}
 } // namespace
 
 PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
@@ -171,7 +146,8 @@ std::shared_ptr<const Function> PhaseFieldModule::interface_potential()
     CoefficientMap coeffs{{"phi_h", fields_.at("phi")}, {"mu_h", fields_.at("mu")}};
     dE_rhs_ = compat::create_form(*forms_.L_dE, {V_}, coeffs, constants_);
     auto a = compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_);
-    dE_mass_ = assemble_matrix(*a, {}, nullptr);
+    dE_mass_ = create_matrix(*a);
+    assemble_matrix(dE_mass_->mat(), *a, {});
     dE_solver_ = std::make_unique<LinearSolver>(comm_, "mass_", std::map<std::string, std::string>{});
     dE_solver_->set_operator(dE_mass_->mat());
     update_interface_potential();
@@ -256,7 +232,8 @@ void PhaseFieldModule::compute_mu_from_phi()
   CoefficientMap coeffs{{"phi_init", fields_.at("phi")}};
   auto a = compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_);
   auto L = compat::create_form(*forms_.L_mu, {V_}, coeffs, constants_);
-  auto M = assemble_matrix(*a, {}, nullptr);
+  auto M = create_matrix(*a);
+  assemble_matrix(M->mat(), *a, {});
   la::Vector<T> b(V_->dofmap()->index_map, 1);
   assemble_rhs(b, *L, a, {});
   LinearSolver mass(comm_, "mass_", {});
