@@ -64,27 +64,38 @@ J = -(rho1 - rho0) / 2 * mobility * grad(mu)
 # The pressure terms keep the exact automatic degree.
 dxq = dx(metadata={"quadrature_degree": QDEG})
 
-a = (Re * rho / dt * inner(v, w)                                      # Re rho d_t v, 5.3 (1), (3.43)
-     + convection * Re * inner(grad(v) * (rho * v0 + J), w)           # (v^n.grad)v, 5.3 (1); J, 2.8
-     # Temam's term: zero for div v^n = 0 (consistent). For constant rho and J = 0 it makes
-     # the linearised convection do no work although v^n is only weakly divergence-free,
-     # i.e. (2.59) holds discretely and E_kin obeys (2.61). (With variable rho an exact
-     # discrete law would need rho(phi^{n+1}), unknown in step 1 of the split.)
-     + convection * Re * rho / 2 * div(v0) * inner(v, w)
-     # -div(2 eta(phi) D(v)), (2.49)/(2.56) (written eta D there; with the factor 2, eta = 1
-     # and div v = 0 give the Lap v of 5.3 (1))
-     + 2 * eta * inner(D(v), D(w))) * dxq \
-    + (-p * div(w)                                                    # grad p, (2.47)/(2.56)
-       - q * div(v)) * dx                                             # div v = 0, (2.57)
+
+def momentum_a(v, p, w, q):
+    """Bilinear form of one step of (2.47)/(2.56)/(2.57) for trial (v, p), test (w, q)."""
+    return (Re * rho / dt * inner(v, w)                               # Re rho d_t v, 5.3 (1), (3.43)
+            + convection * Re * inner(grad(v) * (rho * v0 + J), w)    # (v^n.grad)v, 5.3 (1); J, 2.8
+            # Temam's term: zero for div v^n = 0 (consistent). For constant rho and J = 0 it
+            # makes the linearised convection do no work although v^n is only weakly
+            # divergence-free, i.e. (2.59) holds discretely and E_kin obeys (2.61). (With
+            # variable rho an exact discrete law would need rho(phi^{n+1}), unknown in step 1
+            # of the split.)
+            + convection * Re * rho / 2 * div(v0) * inner(v, w)
+            # -div(2 eta(phi) D(v)), (2.49)/(2.56) (written eta D there; with the factor 2,
+            # eta = 1 and div v = 0 give the Lap v of 5.3 (1))
+            + 2 * eta * inner(D(v), D(w))) * dxq \
+        + (-p * div(w)                                                # grad p, (2.47)/(2.56)
+           - q * div(v)) * dx                                         # div v = 0, (2.57)
+
 
 # Body forces F of (2.47): rho_i g per phase and a constant force; the capillary force
 # dE_S/dphi grad phi of model H (2.8, 5.3 (1)) with mu the CH chemical potential and
 # `capillary` its prefactor (3 sigma / (2 sqrt2) in 2.8, 1/Ca with the scaling of 3.4);
 # f_membrane carries the Helfrich/active forces (3.59), (5.7) once coupled.
-L = (Re * rho / dt * inner(v0, w)                                     # v^n of d_t v, 5.3 (1)
-     + inner(rho * gravity + force, w)                                 # F, (2.47)
-     + capillary * mu * inner(grad(phi), w)                            # dE/dphi grad phi, 2.8
-     + inner(f_membrane, w)) * dxq                                     # (3.59), (5.7)
+def momentum_L(w):
+    """Right-hand side of one step for the velocity test function w."""
+    return (Re * rho / dt * inner(v0, w)                              # v^n of d_t v, 5.3 (1)
+            + inner(rho * gravity + force, w)                         # F, (2.47)
+            + capillary * mu * inner(grad(phi), w)                    # dE/dphi grad phi, 2.8
+            + inner(f_membrane, w)) * dxq                             # (3.59), (5.7)
+
+
+a = momentum_a(v, p, w, q)
+L = momentum_L(w)
 
 # Observables of the current velocity (v0 after a step)
 kinetic_energy = rho / 2 * inner(v0, v0) * dxq                           # (2.54)

@@ -1,9 +1,9 @@
 # Functionals written to observables.csv every step (section 5.3 and 3.2.2), on the
 # standalone P2 fields phi and mu.
-from ufl import (Coefficient, FunctionSpace, SpatialCoordinate, TestFunction, dx, grad,
-                 inner)
+from ufl import (Coefficient, FiniteElement, FunctionSpace, SpatialCoordinate, TestFunction,
+                 conditional, dx, grad, inner, lt, sqrt)
 
-from cellphase_ufl import DIM, P2, QDEG, W, constants, domain, dW
+from cellphase_ufl import DIM, P2, QDEG, W, cell, constants, domain, dW
 
 V = FunctionSpace(domain, P2)
 phi = Coefficient(V)
@@ -29,7 +29,17 @@ moment_yy = phit * x[1] * x[1] * dx
 q = TestFunction(V)
 volume_weights = q * dx
 area_weights = (eps * inner(grad(phi), grad(q)) + dW(phi) * q / eps) * dxq
-forms = [volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1,
+# Local stretching of the membrane, s = sqrt2 eps |grad phi| / (1 - phi^2): 1 for the
+# equilibrium profile (2.12) at every phi. A flow that stretches the membrane by a factor s
+# compresses the profile across it by 1/s (incompressibility) and so multiplies |grad phi|
+# by s; the gradient flows relax it back. Integrated per cell over the band |phi| < 1/2 as
+# a DG0 vector, with the band's measure per cell as weight (min/max of the cell means in C++).
+z = TestFunction(FunctionSpace(domain, FiniteElement("DG", cell, 0)))
+band = conditional(lt(abs(phi), 0.5), 1.0, 0.0)
+stretch = sqrt(2.0) * eps * sqrt(inner(grad(phi), grad(phi))) / (1 - phi**2)
+stretch_sum = band * stretch * z * dxq
+stretch_weight = band * z * dxq
+forms = [stretch_sum, stretch_weight, volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1,
          moment_xx, moment_xy, moment_yy]
 if DIM == 3:
     com_2 = com[2]

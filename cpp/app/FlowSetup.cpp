@@ -35,6 +35,15 @@ FlowParameters flow_parameters(const scene::Scene& scene)
   }
   p.periodic = scene.domain.periodic; // their sides are open above: no wall there
   p.petsc = f.petsc;
+  if (f.inextensibility)
+  {
+    const scene::Inextensibility& in = *f.inextensibility;
+    p.inextensibility.enabled = true;
+    p.inextensibility.xi = in.xi;
+    p.inextensibility.epsilon = scene.numerics.epsilon;
+    p.inextensibility.global_area = in.global_area;
+    p.inextensibility.xi2 = in.concentration ? in.concentration->penalty : 0.0;
+  }
   return p;
 }
 

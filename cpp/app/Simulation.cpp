@@ -4,6 +4,7 @@
 #include "io/FieldSnapshot.h"
 #include "io/Progress.h"
 #include "mesh/FieldTransfer.h"
+#include "physics/UnionPhaseField.h"
 #include "scene/Shapes.h"
 #include "util/Clock.h"
 #include "util/Mpi.h"
@@ -44,16 +45,32 @@ Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart)
 {
   if (scene.flow)
     flow_ = std::make_unique<FlowModule>(flow_parameters(scene), comm);
+  if (scene.flow && scene.flow->inextensibility && scene.flow->inextensibility->concentration)
+    concentration_ = std::make_unique<ConcentrationModule>(
+        scene.flow->inextensibility->concentration->diffusion, scene.domain.periodic, comm);
 }
 
-void Simulation::attach_flow(std::shared_ptr<const Function> velocity)
+void Simulation::attach_flow(std::shared_ptr<const Function> velocity,
+                             std::shared_ptr<const Function> concentration)
 {
   if (!flow_)
     return;
   const auto& fields = module_.fields();
+  MembraneFields membrane;
+  if (scene_.flow->inextensibility)
+  {
+    membrane.phi_cells = union_phase_field({fields.at("phi")}); // (7.14); one field today
+    if (concentration_)
+    {
+      concentration_->attach(membrane.phi_cells, concentration);
+      membrane.concentration = concentration_->concentration();
+    }
+  }
   flow_->attach(module_.space()->mesh(), fields.at("phi"), module_.interface_potential(),
-                velocity);
+                velocity, membrane);
   module_.set_velocity(flow_->velocity());
+  if (concentration_)
+    concentration_->set_velocity(flow_->velocity());
 }
 
 FieldMap Simulation::all_fields() const
@@ -63,7 +80,11 @@ FieldMap Simulation::all_fields() const
   {
     all["v"] = flow_->velocity();
     all["p"] = flow_->pressure();
+    if (flow_->multiplier())
+      all["lambda"] = flow_->multiplier();
   }
+  if (concentration_)
+    all["c"] = concentration_->concentration();
   return all;
 }
 
@@ -73,6 +94,7 @@ StepTimings Simulation::step(double dt)
   if (flow_)
   {
     solving_ = "v"; // names the module if its solver fails
+    flow_->set_area_target(module_.targets().area); // (3.69), fixed at the start
     const FlowTimings f = flow_->step(dt);
     t.assemble += f.assemble;
     t.factorise += f.factorise;
@@ -84,6 +106,13 @@ StepTimings Simulation::step(double dt)
   t.assemble += p.assemble;
   t.factorise += p.factorise;
   t.solve += p.solve;
+  if (concentration_)
+  {
+    solving_ = "c"; // (3.70) with v^{n+1} and phi^{n+1}
+    const double seconds = concentration_->step(dt);
+    t.solve += seconds;
+    t.flow += seconds;
+  }
   return t;
 }
 
@@ -153,6 +182,8 @@ std::string Simulation::save_checkpoint(const LoopState& at)
     // v^n is the flow's only history (p is recomputed each step; kept for the output).
     save_field(*flow_->velocity(), "flow.v", data);
     save_field(*flow_->pressure(), "flow.p", data);
+    if (concentration_)
+      save_field(*concentration_->concentration(), "concentration.c", data);
     // dE/dphi of the L2 Helfrich flows (the next flow step's force) uses them
     data.set("multipliers.volume", module_.multipliers()[0]);
     data.set("multipliers.area", module_.multipliers()[1]);
@@ -212,7 +243,16 @@ Simulation::LoopState Simulation::restore()
       auto v = std::make_shared<Function>(create_vector_p2_space(mesh, scene_.domain.dim));
       restore_field(data, "flow.v", *v);
       module_.set_multipliers({data.scalar("multipliers.volume"), data.scalar("multipliers.area")});
-      attach_flow(v);
+      std::shared_ptr<Function> c;
+      if (concentration_)
+      {
+        if (!data.arrays.count("concentration.c.block_size"))
+          throw CheckpointError("it was written without the membrane concentration, the scene "
+                                "has flow.inextensibility.concentration");
+        c = std::make_shared<Function>(V);
+        restore_field(data, "concentration.c", *c);
+      }
+      attach_flow(v, c);
       restore_field(data, "flow.p", *flow_->pressure());
     }
     module_.set_targets({data.scalar("targets.volume"), data.scalar("targets.area")});
@@ -264,8 +304,14 @@ double Simulation::remesh(double& volume_change)
     velocity = std::make_shared<Function>(create_vector_p2_space(mesh, scene_.domain.dim));
     compat::transfer(flow_->velocity(), *velocity);
   }
+  std::shared_ptr<Function> concentration;
+  if (concentration_)
+  {
+    concentration = std::make_shared<Function>(V);
+    compat::transfer(concentration_->concentration(), *concentration);
+  }
   module_.attach(V, fields);
-  attach_flow(velocity);
+  attach_flow(velocity, concentration);
   observables_ = std::make_unique<Observables>(scene_, module_);
   volume_change = report.volume_change_corrected;
   return seconds_since(t0);
@@ -283,8 +329,10 @@ void Simulation::keep_good_state(const LoopState& at)
 
 std::string Simulation::module_name(const std::string& field) const
 {
-  if (field == "v" || field == "p")
+  if (field == "v" || field == "p" || field == "lambda")
     return "flow module";
+  if (field == "c")
+    return "membrane concentration module (3.70)";
   return std::string("phase-field module (") + scene::to_string(scene_.phase_field.model) + ")";
 }
 
@@ -358,6 +406,7 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
     auto& v = r.values;
     v.kinetic_energy = scene::flow_reynolds(scene_) * f.kinetic_energy; // (3.12)
     v.cell_velocity = f.cell_velocity;
+    v.tension_mean = f.tension_mean;
     // Cahn-Hilliard: the interface energy is (1/Ca) E_CH (3.13); Helfrich: the model's own.
     const double interface = scene_.phase_field.model == scene::Model::cahn_hilliard
                                  ? scene::flow_capillary(scene_) * v.energy_ch

@@ -5,6 +5,7 @@
 #include "io/FieldWriter.h"
 #include "io/ObservablesCsv.h"
 #include "mesh/AdaptiveMesh.h"
+#include "physics/ConcentrationModule.h"
 #include "physics/FlowModule.h"
 #include "physics/Observables.h"
 #include "physics/PhaseFieldModule.h"
@@ -66,7 +67,10 @@ private:
   double remesh(double& volume_change);
   /// Flow on the phase field's current mesh, reading its phi and dE/dphi, starting from
   /// `velocity` (null: at rest); the phase field is then advected by the flow's velocity.
-  void attach_flow(std::shared_ptr<const Function> velocity);
+  /// With the concentration variant of the inextensibility, c starts from `concentration`
+  /// (null: c = 1).
+  void attach_flow(std::shared_ptr<const Function> velocity,
+                   std::shared_ptr<const Function> concentration = nullptr);
   /// The phase-field fields plus, with flow, the velocity v and pressure p.
   FieldMap all_fields() const;
   /// One step of the split (section 5.3): flow with phi^n, mu^n, then phi with v^{n+1}.
@@ -89,6 +93,8 @@ private:
   AdaptiveMesh adaptive_;
   PhaseFieldModule module_;
   std::unique_ptr<FlowModule> flow_; ///< only if the scene has a flow section
+  /// Membrane concentration (3.70), only with flow.inextensibility.concentration
+  std::unique_ptr<ConcentrationModule> concentration_;
   CheckpointStore checkpoints_;
   std::unique_ptr<Observables> observables_;
   std::unique_ptr<ObservablesCsv> csv_;

@@ -15,7 +15,9 @@ const char* header = "time,step,volume,surface,helfrich_energy,total_energy,ener
                      "wall_solve,wall_remesh,wall_output,"
                      // appended with the flow coupling; readers find columns by name
                      "kinetic_energy,total_energy_kinetic,cell_velocity_x,cell_velocity_y,"
-                     "cell_velocity_z,rise_velocity,inclination_deg,wall_flow\n";
+                     "cell_velocity_z,rise_velocity,inclination_deg,wall_flow,"
+                     // the membrane's local stretching; the mean multiplier of (3.67)
+                     "stretch_min,stretch_max,tension_mean\n";
 
 /// Rows of an existing file up to `step` (complete lines only: a killed run may have left
 /// half a row), written back atomically. Returns false if there is no such file.
@@ -71,14 +73,15 @@ void ObservablesCsv::write(const StepRecord& r)
   std::fprintf(file_,
                "%.10g,%d,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.10g,"
                "%.10g,%.10g,%lld,%.3e,%.4g,%.4g,%.4g,%.4g,%.4g,"
-               "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.4g\n",
+               "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.4g,%.10g,%.10g,%.10g\n",
                r.time, r.step, v.volume, v.surface, v.helfrich, v.total_energy, v.energy_ch,
                v.center[0], v.center[1], dim_ == 3 ? v.center[2] : 0.0, v.circularity,
                v.phi_min, v.phi_max, r.lam_v, r.lam_a, (long long)r.dofs,
                r.remesh_volume_change, r.timings.assemble, r.timings.factorise, r.timings.solve,
                r.remesh_time, r.output_time, v.kinetic_energy, v.total_with_kinetic,
                v.cell_velocity[0], v.cell_velocity[1], dim_ == 3 ? v.cell_velocity[2] : 0.0,
-               v.cell_velocity[1], v.inclination_deg, r.timings.flow);
+               v.cell_velocity[1], v.inclination_deg, r.timings.flow, v.stretch_min, v.stretch_max,
+               v.tension_mean);
   std::fflush(file_);
 }
 } // namespace cellphase

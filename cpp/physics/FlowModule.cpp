@@ -50,22 +50,36 @@ FlowModule::FlowModule(const FlowParameters& parameters, MPI_Comm comm, FlowForm
                 {"mobility", constant(p.mobility)},
                 {"capillary", constant(p.capillary)},
                 {"one", constant(1.0)}};
+  const Inextensibility& in = p.inextensibility;
+  if (in.enabled)
+  {
+    if (!(in.epsilon > 0) || !(in.xi > 0))
+      throw std::invalid_argument("flow: inextensibility needs eps > 0 and xi > 0");
+    constants_["eps"] = constant(in.epsilon);
+    constants_["xi"] = constant(in.xi);
+    constants_["xi2"] = constant(in.xi2);
+    area_source_ = constant(0.0);
+    constants_["area_source"] = area_source_;
+  }
 }
 
 std::int64_t FlowModule::num_dofs() const { return compat::num_global_dofs(*W_); }
 
 void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const Function> phi,
                         std::shared_ptr<const Function> mu,
-                        std::shared_ptr<const Function> velocity)
+                        std::shared_ptr<const Function> velocity, MembraneFields membrane)
 {
-  for (const auto& f : {phi, mu, velocity})
+  for (const auto& f : {phi, mu, velocity, membrane.phi_cells, membrane.concentration})
     if (f && f->function_space()->mesh() != mesh)
       throw std::invalid_argument("flow: phi, mu and the velocity must live on the flow's mesh"
                                   " (transfer them after a remesh)");
   mesh_ = mesh;
   const int dim = mesh->topology().dim();
+  const bool inextensible = params_.inextensibility.enabled;
   if (!forms_.a)
-    forms_ = flow_forms(dim);
+    forms_ = flow_forms(dim, inextensible);
+  if (inextensible != forms_.has_multiplier)
+    throw std::invalid_argument("flow: the forms do not match the inextensibility setting");
   constants_["gravity"] = vector_constant(params_.gravity, dim);
   constants_["force"] = vector_constant(params_.force, dim);
 
@@ -91,6 +105,21 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
   }
   phi_ = phi;
   mu_ = mu;
+  if (inextensible)
+  {
+    Lambda_ = compat::collapse(*W_, {2});
+    phi_cells_ = membrane.phi_cells ? membrane.phi_cells : phi;
+    if (!membrane.concentration)
+    {
+      auto one = std::make_shared<Function>(compat::create_space(forms_.space, "phi", mesh));
+      one->x()->set(1.0);
+      membrane.concentration = one;
+    }
+    concentration_ = membrane.concentration;
+    multiplier_ = std::make_shared<Function>(Lambda_.space);
+    multiplier_->name = "lambda";
+    multiplier_->x()->set(0.0);
+  }
   velocity_ = std::make_shared<Function>(Vv_.space);
   velocity_->name = "v";
   velocity_->x()->set(0.0);
@@ -216,6 +245,12 @@ void FlowModule::bind_forms()
                         {"mu", mu_},
                         {"f_membrane", membrane_force_},
                         {"p_h", pressure_}};
+  if (multiplier_)
+  {
+    coeffs["phi_cells"] = phi_cells_;
+    coeffs["conc"] = concentration_;
+    coeffs["lam_h"] = multiplier_;
+  }
   a_ = compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_);
   L_ = compat::create_form(*forms_.L, {W_}, coeffs, constants_);
   auto functional = [&](ufcx_form* f) -> std::shared_ptr<Form>
@@ -228,6 +263,10 @@ void FlowModule::bind_forms()
   for (int d = 0; d < mesh_->topology().dim(); ++d)
     phase_velocity_.push_back(functional(forms_.phase_velocity[d]));
   domain_volume_ = compat::assemble_scalar(*functional(forms_.domain_volume));
+  membrane_delta_ = functional(forms_.membrane_delta);
+  energy_ch_ = functional(forms_.energy_ch);
+  lambda_dissipation_ = functional(forms_.lambda_dissipation);
+  lambda_membrane_ = functional(forms_.lambda_membrane);
 }
 
 bool FlowModule::matrix_outdated(double dt) const
@@ -254,6 +293,9 @@ bool FlowModule::local_matrix_outdated(double dt) const
     return true;
   if (transport && variable_density && p.mobility != 0 && !same(factorised_mu_, *mu_))
     return true;
+  // delta_phi P_phi and phi^2 of (3.67)-(3.68) move with the membrane
+  if (phi_cells_ && !same(factorised_phi_cells_, *phi_cells_))
+    return true;
   return transport && !same(factorised_v_, *velocity_);
 }
 
@@ -264,6 +306,20 @@ void FlowModule::remember_matrix_inputs(double dt)
   factorised_phi_ = copy_of(*phi_);
   factorised_mu_ = copy_of(*mu_);
   factorised_v_ = copy_of(*velocity_);
+  if (phi_cells_)
+    factorised_phi_cells_ = copy_of(*phi_cells_);
+}
+
+double FlowModule::area_source(double dt) const
+{
+  if (!params_.inextensibility.global_area)
+    return 0;
+  if (!(area_target_ > 0))
+    throw std::logic_error("flow: the global area constraint needs set_area_target");
+  // E_CH = 2 sqrt2/3 |Gamma| (3.11); the r = 1 row of (3.68) sets d|Gamma|/dt =
+  // int delta P : grad v = area_source int delta_phi.
+  const double missing = 3 / (2 * std::sqrt(2.0)) * (area_target_ - compat::assemble_scalar(*energy_ch_));
+  return missing / (dt * compat::assemble_scalar(*membrane_delta_));
 }
 
 FlowTimings FlowModule::step(double dt)
@@ -271,6 +327,8 @@ FlowTimings FlowModule::step(double dt)
   FlowTimings t;
   auto t0 = Clock::now();
   dt_->value[0] = dt;
+  if (multiplier_)
+    area_source_->value[0] = area_source(dt);
   t.factorised = matrix_outdated(dt);
   if (t.factorised)
     periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
@@ -302,6 +360,12 @@ void FlowModule::store_solution()
     v[i] = x[Vv_.to_parent[i]];
   for (std::size_t i = 0; i < p.size(); ++i)
     p[i] = x[Q_.to_parent[i]];
+  if (multiplier_)
+  {
+    auto l = multiplier_->x()->mutable_array();
+    for (std::size_t i = 0; i < l.size(); ++i)
+      l[i] = x[Lambda_.to_parent[i]];
+  }
   if (pinned_)
   {
     // Zero mean instead of the arbitrary value at the pinned node.
@@ -321,6 +385,13 @@ FlowObservables FlowModule::observables() const
   if (weight > 1e-12 * domain_volume_)
     for (std::size_t d = 0; d < phase_velocity_.size(); ++d)
       o.cell_velocity[d] = compat::assemble_scalar(*phase_velocity_[d]) / weight;
+  if (multiplier_)
+  {
+    const double length = compat::assemble_scalar(*membrane_delta_);
+    if (length > 0)
+      o.tension_mean = compat::assemble_scalar(*lambda_membrane_) / length;
+    o.lambda_dissipation = compat::assemble_scalar(*lambda_dissipation_);
+  }
   return o;
 }
 } // namespace cellphase

@@ -36,6 +36,18 @@ struct Wall
   VectorPointFunction profile;
 };
 
+/// Local inextensibility of the membrane, section 3.4.3 (Aland et al.): a multiplier
+/// lambda solved with v and p, (3.67)-(3.68); optionally the global area (3.69) and the
+/// concentration penalty (3.71).
+struct Inextensibility
+{
+  bool enabled = false;
+  double xi = 1;             ///< xi of (3.68)
+  double epsilon = 0;        ///< interface width eps of (3.68)
+  bool global_area = false;  ///< (3.69): every flow step restores the area A0
+  double xi2 = 0;            ///< xi_2 of (3.71) (0: no concentration penalty)
+};
+
 /// Dimensionless parameters of the flow. Index 0 of the two-phase pairs is the surrounding
 /// fluid (phi = -1), index 1 the cell (phi = +1).
 struct FlowParameters
@@ -52,6 +64,7 @@ struct FlowParameters
   /// Periodic axes (0, 1, 2 = x, y, z) of the mesh's bounding box; no walls on their sides.
   std::vector<int> periodic;
   std::map<std::string, std::string> petsc; ///< options under the prefix flow_
+  Inextensibility inextensibility;
 };
 
 struct FlowTimings
@@ -65,6 +78,18 @@ struct FlowObservables
   double kinetic_energy = 0;                ///< 1/2 int rho(phi) |v|^2, (2.54)
   std::array<double, 3> cell_velocity{0, 0, 0}; ///< int phi~ v / int phi~, phi~ = (1+phi)/2
   double divergence_l2 = 0;                 ///< || div v ||_L2
+  // With inextensibility (zero without):
+  double tension_mean = 0;       ///< int lambda delta_phi / int delta_phi
+  double lambda_dissipation = 0; ///< xi eps^2 int phi^2 |grad lambda|^2, (3.76)
+};
+
+/// Fields of the membrane read by the inextensibility constraint (null: defaults).
+struct MembraneFields
+{
+  /// phi_cells = max_i phi_i, (7.14) (null: the flow's phi)
+  std::shared_ptr<const Function> phi_cells;
+  /// concentration c of (3.70) (null: c = 1, no penalty)
+  std::shared_ptr<const Function> concentration;
 };
 
 class FlowModule
@@ -78,7 +103,10 @@ public:
   /// (vector P2 on this mesh, any dof numbering) is the initial v^n (null: v = 0).
   void attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const Function> phi = nullptr,
               std::shared_ptr<const Function> mu = nullptr,
-              std::shared_ptr<const Function> velocity = nullptr);
+              std::shared_ptr<const Function> velocity = nullptr,
+              MembraneFields membrane = {});
+  /// Area target A0 of the global constraint (3.69), as the E_CH of (3.11) at the start.
+  void set_area_target(double energy_ch) { area_target_ = energy_ch; }
   /// v^n -> v^{n+1}, p^{n+1}. The matrix is rebuilt and refactorised only if something it
   /// depends on changed since the last factorisation (dt, phi, mu, v^n, the mesh).
   FlowTimings step(double dt);
@@ -86,6 +114,8 @@ public:
   /// v (vector P2, holds v^n before and v^{n+1} after a step), p (P1).
   std::shared_ptr<Function> velocity() const { return velocity_; }
   std::shared_ptr<Function> pressure() const { return pressure_; }
+  /// Multiplier lambda of (3.67) (P1), null without inextensibility.
+  std::shared_ptr<Function> multiplier() const { return multiplier_; }
   /// Extra force density f_membrane (vector P2), zero unless a coupling writes into it.
   std::shared_ptr<Function> membrane_force() const { return membrane_force_; }
   FlowObservables observables() const;
@@ -102,18 +132,21 @@ private:
   bool local_matrix_outdated(double dt) const;
   void remember_matrix_inputs(double dt);
   void store_solution();
+  /// area_source of forms/flow_inextensible.py: the membrane-area rate that brings the
+  /// area back to A0 in one step, per unit of int delta_phi (0 without global_area).
+  double area_source(double dt) const;
 
   FlowParameters params_;
   MPI_Comm comm_;
   FlowForms forms_;
   ConstantMap constants_;
-  std::shared_ptr<Constant> dt_;
+  std::shared_ptr<Constant> dt_, area_source_;
 
   std::shared_ptr<const Mesh> mesh_;
   std::shared_ptr<Space> W_;
-  compat::CollapsedSpace Vv_, Q_;
-  std::shared_ptr<const Function> phi_, mu_;
-  std::shared_ptr<Function> velocity_, pressure_, membrane_force_;
+  compat::CollapsedSpace Vv_, Q_, Lambda_;
+  std::shared_ptr<const Function> phi_, mu_, phi_cells_, concentration_;
+  std::shared_ptr<Function> velocity_, pressure_, membrane_force_, multiplier_;
   std::vector<std::shared_ptr<Function>> bc_values_;
   BCs bcs_;
   bool pinned_ = false;
@@ -121,7 +154,9 @@ private:
   std::shared_ptr<Form> a_, L_;
   std::shared_ptr<Form> kinetic_, divergence_, phase_weight_, pressure_integral_;
   std::vector<std::shared_ptr<Form>> phase_velocity_;
+  std::shared_ptr<Form> membrane_delta_, energy_ch_, lambda_dissipation_, lambda_membrane_;
   double domain_volume_ = 0;
+  double area_target_ = 0;
 
   /// Periodic directions (plain assembly without): rebuilt with the BCs on every mesh.
   std::unique_ptr<PeriodicConstraint> periodic_;
@@ -131,7 +166,7 @@ private:
   /// Inputs of the factorised matrix; a step compares them with the current ones.
   bool factorised_ = false;
   double factorised_dt_ = 0;
-  std::vector<T> factorised_phi_, factorised_mu_, factorised_v_;
+  std::vector<T> factorised_phi_, factorised_mu_, factorised_v_, factorised_phi_cells_;
   int factorisations_ = 0;
 };
 } // namespace cellphase

@@ -5,6 +5,10 @@
 #include "cahn_hilliard_3d.h"
 #include "flow_2d.h"
 #include "flow_3d.h"
+#include "flow_inextensible_2d.h"
+#include "flow_inextensible_3d.h"
+#include "concentration_2d.h"
+#include "concentration_3d.h"
 #include "helfrich_hm1_2d.h"
 #include "helfrich_hm1_3d.h"
 #include "helfrich_l2_2d.h"
@@ -83,7 +87,10 @@ ObservableForms observable_forms(int dim)
   f.com[1] = form_observables_##D##_com_1;                                                      \
   f.moments = {form_observables_##D##_moment_xx, form_observables_##D##_moment_xy,              \
                form_observables_##D##_moment_yy};                                               \
-  f.p2_space = functionspace_form_observables_##D##_phi_integral;
+  f.p2_space = functionspace_form_observables_##D##_phi_integral;                               \
+  f.stretch_sum = form_observables_##D##_stretch_sum;                                           \
+  f.stretch_weight = form_observables_##D##_stretch_weight;                                     \
+  f.stretch_space = functionspace_form_observables_##D##_stretch_sum;
   if (dim == 2)
   {
     CELLPHASE_OBSERVABLES(2d)
@@ -96,28 +103,63 @@ ObservableForms observable_forms(int dim)
   return f;
 }
 
-FlowForms flow_forms(int dim)
+FlowForms flow_forms(int dim, bool inextensible)
 {
   FlowForms f;
-#define CELLPHASE_FLOW(D)                                                                       \
-  f.a = form_flow_##D##_a;                                                                      \
-  f.L = form_flow_##D##_L;                                                                      \
-  f.kinetic_energy = form_flow_##D##_kinetic_energy;                                            \
-  f.divergence_sq = form_flow_##D##_divergence_sq;                                              \
-  f.phase_weight = form_flow_##D##_phase_weight;                                                \
-  f.phase_velocity[0] = form_flow_##D##_phase_velocity_0;                                       \
-  f.phase_velocity[1] = form_flow_##D##_phase_velocity_1;                                       \
-  f.pressure_integral = form_flow_##D##_pressure_integral;                                      \
-  f.domain_volume = form_flow_##D##_domain_volume;                                              \
-  f.space = functionspace_form_flow_##D##_a;
-  if (dim == 2)
+#define CELLPHASE_FLOW(F, D)                                                                    \
+  f.a = form_##F##_##D##_a;                                                                     \
+  f.L = form_##F##_##D##_L;                                                                     \
+  f.kinetic_energy = form_##F##_##D##_kinetic_energy;                                           \
+  f.divergence_sq = form_##F##_##D##_divergence_sq;                                             \
+  f.phase_weight = form_##F##_##D##_phase_weight;                                               \
+  f.phase_velocity[0] = form_##F##_##D##_phase_velocity_0;                                      \
+  f.phase_velocity[1] = form_##F##_##D##_phase_velocity_1;                                      \
+  f.pressure_integral = form_##F##_##D##_pressure_integral;                                     \
+  f.domain_volume = form_##F##_##D##_domain_volume;                                             \
+  f.space = functionspace_form_##F##_##D##_a;
+#define CELLPHASE_MULTIPLIER(D)                                                                 \
+  f.has_multiplier = true;                                                                      \
+  f.membrane_delta = form_flow_inextensible_##D##_membrane_delta;                               \
+  f.energy_ch = form_flow_inextensible_##D##_energy_ch;                                         \
+  f.lambda_dissipation = form_flow_inextensible_##D##_lambda_dissipation;                       \
+  f.lambda_membrane = form_flow_inextensible_##D##_lambda_membrane;
+  if (dim == 2 && !inextensible)
   {
-    CELLPHASE_FLOW(2d)
+    CELLPHASE_FLOW(flow, 2d)
+  }
+  else if (dim == 2)
+  {
+    CELLPHASE_FLOW(flow_inextensible, 2d)
+    CELLPHASE_MULTIPLIER(2d)
+  }
+  else if (!inextensible)
+  {
+    CELLPHASE_FLOW(flow, 3d)
+    f.phase_velocity[2] = form_flow_3d_phase_velocity_2;
   }
   else
   {
-    CELLPHASE_FLOW(3d)
-    f.phase_velocity[2] = form_flow_3d_phase_velocity_2;
+    CELLPHASE_FLOW(flow_inextensible, 3d)
+    CELLPHASE_MULTIPLIER(3d)
+    f.phase_velocity[2] = form_flow_inextensible_3d_phase_velocity_2;
+  }
+  return f;
+}
+
+ConcentrationForms concentration_forms(int dim)
+{
+  ConcentrationForms f;
+  if (dim == 2)
+  {
+    f.a = form_concentration_2d_a;
+    f.L = form_concentration_2d_L;
+    f.space = functionspace_form_concentration_2d_a;
+  }
+  else
+  {
+    f.a = form_concentration_3d_a;
+    f.L = form_concentration_3d_L;
+    f.space = functionspace_form_concentration_3d_a;
   }
   return f;
 }

@@ -40,6 +40,10 @@ struct ObservableForms
   /// int phi~ x x, int phi~ x y, int phi~ y y (inclination of a 2D cell)
   std::array<ufcx_form*, 3> moments{nullptr, nullptr, nullptr};
   ufcx_space_fn p2_space = nullptr; ///< scalar P2 (coefficient "phi")
+  /// Local stretching s of the membrane per DG0 cell: int_band s and the band's measure
+  ufcx_form* stretch_sum = nullptr;
+  ufcx_form* stretch_weight = nullptr;
+  ufcx_space_fn stretch_space = nullptr; ///< DG0 (argument "z" of stretch_sum)
 };
 
 /// Forms of forms/flow.py (or a test file that extends it with the same names).
@@ -54,9 +58,25 @@ struct FlowForms
   ufcx_form* pressure_integral = nullptr;
   ufcx_form* domain_volume = nullptr;
   ufcx_space_fn space = nullptr; ///< spaces of `a`: "v_0" (Taylor-Hood), "v0", "phi", "p_h"
+  // Only forms/flow_inextensible.py (mixed v, p, lambda), (3.67)-(3.71):
+  bool has_multiplier = false;            ///< `a` has the third sub-space lambda
+  ufcx_form* membrane_delta = nullptr;     ///< int delta_phi
+  ufcx_form* energy_ch = nullptr;          ///< E_CH of phi_cells (the area of (3.11))
+  ufcx_form* lambda_dissipation = nullptr; ///< xi eps^2 int phi^2 |grad lambda|^2, (3.76)
+  ufcx_form* lambda_membrane = nullptr;    ///< int lambda delta_phi
+};
+
+/// forms/concentration.py: one step of the membrane concentration (3.70).
+struct ConcentrationForms
+{
+  ufcx_form* a = nullptr;
+  ufcx_form* L = nullptr;
+  ufcx_space_fn space = nullptr; ///< "c" (P2, the trial function), "c0", "phi", "v"
 };
 
 ModelForms model_forms(scene::Model model, int dim);
 ObservableForms observable_forms(int dim);
-FlowForms flow_forms(int dim);
+/// forms/flow.py, or with `inextensible` forms/flow_inextensible.py.
+FlowForms flow_forms(int dim, bool inextensible = false);
+ConcentrationForms concentration_forms(int dim);
 } // namespace cellphase

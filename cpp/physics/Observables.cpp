@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <dolfinx/fem/assembler.h>
 
 namespace cellphase
 {
@@ -28,6 +30,33 @@ Observables::Observables(const scene::Scene& scene, const PhaseFieldModule& modu
   if (dim == 2)
     for (auto* m : f.moments)
       moments_.push_back(make(m));
+  auto cells = compat::create_space(f.stretch_space, "z", mesh);
+  stretch_sum_ = compat::create_form(*f.stretch_sum, {cells}, coeffs, constants);
+  stretch_weight_ = compat::create_form(*f.stretch_weight, {cells}, coeffs, constants);
+}
+
+std::pair<double, double> Observables::stretch_range() const
+{
+  auto cells = stretch_sum_->function_spaces()[0];
+  dolfinx::la::Vector<T> sum(cells->dofmap()->index_map, 1), weight(cells->dofmap()->index_map, 1);
+  for (auto [b, form] : {std::pair{&sum, stretch_sum_}, std::pair{&weight, stretch_weight_}})
+  {
+    b->set(0.0);
+    dolfinx::fem::assemble_vector(b->mutable_array(), *form);
+  }
+  // DG0: every cell's integral is complete on its owner, no ghost accumulation needed.
+  const auto n = cells->dofmap()->index_map->size_local();
+  auto s = sum.array(), w = weight.array();
+  double lo = 1e300, hi = -1e300;
+  for (std::int32_t i = 0; i < n; ++i)
+    if (w[i] > 0)
+      lo = std::min(lo, s[i] / w[i]), hi = std::max(hi, s[i] / w[i]);
+  MPI_Comm comm = cells->mesh()->comm();
+  MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, comm);
+  if (hi < lo) // no interface on the mesh
+    return {0.0, 0.0};
+  return {lo, hi};
 }
 
 ObservableValues Observables::evaluate() const
@@ -63,6 +92,8 @@ ObservableValues Observables::evaluate() const
     v.circularity = 2 * std::sqrt(pi * v.volume) / v.surface; // (5.20)
   else
     v.circularity = std::cbrt(pi) * std::pow(6 * v.volume, 2.0 / 3.0) / v.surface;
+
+  std::tie(v.stretch_min, v.stretch_max) = stretch_range();
 
   auto phi = module_.fields().at("phi")->x()->array();
   double lo = 1e300, hi = -1e300;

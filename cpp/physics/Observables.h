@@ -19,10 +19,15 @@ struct ObservableValues
   /// 2D: angle (degrees, in (-90, 90]) of the major axis of the second moments of phi~
   /// against the x axis; 0 for a circle and in 3D.
   double inclination_deg = 0;
+  /// Local stretching s = sqrt2 eps |grad phi| / (1 - phi^2) of the membrane (1 for the
+  /// equilibrium profile; > 1 stretched, < 1 compressed): the smallest and largest mean
+  /// over the band |phi| < 1/2 of one mesh cell.
+  double stretch_min = 0, stretch_max = 0;
   // Flow (zero without it), filled by the time loop from the flow module
   double kinetic_energy = 0;     ///< Re/2 int rho(phi) |v|^2, (3.12)/(2.54)
   double total_with_kinetic = 0; ///< kinetic + interface energy, whose law is (2.61)/(2.62)
   std::array<double, 3> cell_velocity{0, 0, 0}; ///< int phi~ v / int phi~
+  double tension_mean = 0; ///< mean lambda on the membrane (inextensibility, 3.4.3)
 };
 
 class Observables
@@ -36,5 +41,8 @@ private:
   const PhaseFieldModule& module_;
   std::shared_ptr<Form> phi_integral_, volume_, energy_ch_, helfrich_;
   std::vector<std::shared_ptr<Form>> com_, moments_;
+  std::shared_ptr<Form> stretch_sum_, stretch_weight_;
+  /// min and max over the cells of int_band s / |band|, cells that meet the band only
+  std::pair<double, double> stretch_range() const;
 };
 } // namespace cellphase

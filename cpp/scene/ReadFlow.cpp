@@ -85,6 +85,34 @@ void read_flow_petsc(const Section& p, std::map<std::string, std::string>& out)
       v.fail("found " + v.found() + ", expected a single value (text, number or boolean)");
   }
 }
+/// flow.inextensibility (3.67)-(3.72); `enabled: false` keeps the section but switches it
+/// off (e.g. --set flow.inextensibility.enabled=false to compare).
+std::optional<Inextensibility> read_inextensibility(const Section& f, Model m)
+{
+  if (!f.has("inextensibility"))
+    return std::nullopt;
+  const Section s = f.section("inextensibility");
+  s.allow_only({"enabled", "xi", "global_area", "concentration"});
+  if (!s.boolean("enabled", true))
+    return std::nullopt;
+  if (!is_helfrich(m))
+    f.fail("inextensibility", std::string("phase_field.model ") + to_string(m)
+                                  + " has no membrane; the inextensibility constraint (3.67) "
+                                    "needs a Helfrich model");
+  Inextensibility in;
+  in.xi = s.number("xi", in.xi, positive());
+  in.global_area = s.boolean("global_area", in.global_area);
+  if (s.has("concentration"))
+  {
+    const Section c = s.section("concentration");
+    c.allow_only({"penalty", "diffusion"});
+    Inextensibility::Concentration conc;
+    conc.penalty = c.number("penalty", conc.penalty, non_negative());
+    conc.diffusion = c.number("diffusion", conc.diffusion, non_negative());
+    in.concentration = conc;
+  }
+  return in;
+}
 } // namespace
 
 void read_flow(const Section& top, Scene& s)
@@ -93,7 +121,7 @@ void read_flow(const Section& top, Scene& s)
     return;
   const Section f = top.section("flow");
   f.allow_only({"equations", "density", "viscosity", "gravity", "force", "surface_tension",
-                "walls", "petsc"});
+                "walls", "petsc", "inextensibility"});
   const Model m = s.phase_field.model;
   if (!couples_to_flow(m))
     top.fail("flow", std::string("phase_field.model ") + to_string(m)
@@ -136,6 +164,7 @@ void read_flow(const Section& top, Scene& s)
       flow.walls[i] = read_wall(walls, sides[i], dim);
   }
   read_flow_petsc(f.section("petsc"), flow.petsc);
+  flow.inextensibility = read_inextensibility(f, m);
   s.flow = flow;
 }
 

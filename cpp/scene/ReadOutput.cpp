@@ -27,6 +27,12 @@ void read_output(const Section& top, Scene& s)
   {
     allowed.push_back("v"); // velocity and pressure of the flow
     allowed.push_back("p");
+    if (s.flow->inextensibility)
+    {
+      allowed.push_back("lambda"); // multiplier of (3.67)
+      if (s.flow->inextensibility->concentration)
+        allowed.push_back("c"); // concentration of (3.70)
+    }
   }
   out.fields = o.strings("fields");
   const Value v = o.value("fields");

@@ -155,6 +155,20 @@ const std::array<const char*, 6> side_names{"left", "right", "bottom", "top", "f
 /// The two-phase flow coupled to the phase field (section 2.8, 3.4.2, 3.5), in the thesis'
 /// dimensionless scaling (3.17): Re rho (d_t v + v.grad v) + grad p = div(2 eta D) +
 /// rho gravity + force + (dE/dphi) grad phi, with rho, eta interpolated in phi (2.56).
+/// Local inextensibility of the membrane (section 3.4.3).
+struct Inextensibility
+{
+  double xi = 1;               ///< xi of (3.68); Aland et al. recommend 1
+  bool global_area = false;    ///< global area constraint (3.69)
+  /// Concentration variant (3.70)-(3.72): xi_2 of (3.71) and d_c of (3.70); absent: off.
+  struct Concentration
+  {
+    double penalty = 1;
+    double diffusion = 1e-3;
+  };
+  std::optional<Concentration> concentration;
+};
+
 struct Flow
 {
   FlowEquations equations = FlowEquations::navier_stokes;
@@ -165,6 +179,7 @@ struct Flow
   std::optional<double> surface_tension;  ///< sigma (dimensionless); default from Ca
   std::array<WallSpec, 6> walls;          ///< by side, see side_names
   std::map<std::string, std::string> petsc; ///< options of the flow solver (prefix flow_)
+  std::optional<Inextensibility> inextensibility; ///< absent: the membrane may stretch
 };
 
 struct Scene
