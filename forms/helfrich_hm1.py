@@ -1,9 +1,12 @@
 # H^-1 gradient flow of the diffuse Helfrich energy with an area penalty, (3.33)-(3.35):
 #   d_t phi = gamma Lap w,                                                          (3.34)
-#   w       = 1/Be ( Lap mu - W0''(phi) mu / eps^2 + p2 (A - A0) kappa ),           (3.35)
+#   w       = 1/Be ( Lap mu - W0''(phi) mu / eps^2 + p2 (A - A0) kappa ) + sigma kappa,
+#                                                                           (3.35), (3.87)
 #   mu      = eps Lap phi - W0'(phi)/eps,                                           (3.23)
 # natural boundary conditions grad w . n = grad mu . n = 0 keep int phi exactly.
 # lam_a = p2 (A - A0) is evaluated at t^{n+1} through the unit load below (C++).
+# sigma = 1/Ca is the surface tension of (3.78) (0 unless phase_field.surface_tension),
+# explicit in kappa like the penalty.
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
@@ -14,7 +17,8 @@ Wsp = FunctionSpace(domain, mixed(3))
 (phi, mu, w), (psi, nu, zeta) = TrialFunctions(Wsp), TestFunctions(Wsp)
 u0 = Coefficient(Wsp)  # (phi^n, mu^n, w^n)
 phi0, mu0, w0 = split(u0)
-dt, eps, gamma, Be, H0, S, lam_a = constants("dt", "eps", "gamma", "Be", "H0", "S", "lam_a")
+dt, eps, gamma, Be, H0, S, lam_a, sigma = constants("dt", "eps", "gamma", "Be", "H0", "S",
+                                                    "lam_a", "sigma")
 dxq = dx(metadata={"quadrature_degree": QDEG})
 kappa0 = kappa_of(phi0, mu0, H0)
 v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
@@ -23,7 +27,7 @@ common = (phi * psi / dt + gamma * inner(grad(w), grad(psi))
           + w * zeta + 1 / Be * inner(grad(mu), grad(zeta))
           + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
     + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
-rhs_common = phi0 * psi / dt * dx + lam_a / Be * kappa0 * zeta * dxq
+rhs_common = phi0 * psi / dt * dx + (lam_a / Be + sigma) * kappa0 * zeta * dxq
 
 # Taylor linearisation as in helfrich_l2.py (section 5.3)
 a = common + (1 / (Be * eps**2) * (ddW0(phi0, eps, H0) * mu + dddW0(phi0, eps, H0) * mu0 * phi)

@@ -1,6 +1,7 @@
 # L2 gradient flow of the diffuse Helfrich energy with volume and area constraints,
 # (3.26)-(3.27) with Lagrange multipliers or (3.31)-(3.32) with penalties:
 #   d_t phi = -gamma/Be ( Lap mu - W0''(phi) mu / eps^2 + lam_v + lam_a kappa^n ),   (3.27)
+#             - gamma sigma kappa^n                       (surface tension 1/Ca, (3.83)-(3.84))
 #   mu      = eps Lap phi - W0'(phi)/eps,                                          (3.23)
 # boundary conditions phi = -1 (or natural), grad mu . n = 0 (section 3.4.1).
 # lam_v, lam_a are computed in C++ from the unit loads below.
@@ -14,8 +15,8 @@ Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
 u0 = Coefficient(Wsp)  # (phi^n, mu^n)
 phi0, mu0 = split(u0)
-dt, eps, gamma, Be, H0, S, lam_v, lam_a = constants(
-    "dt", "eps", "gamma", "Be", "H0", "S", "lam_v", "lam_a")
+dt, eps, gamma, Be, H0, S, lam_v, lam_a, sigma = constants(
+    "dt", "eps", "gamma", "Be", "H0", "S", "lam_v", "lam_a", "sigma")
 dxq = dx(metadata={"quadrature_degree": QDEG})
 g = gamma / Be
 kappa0 = kappa_of(phi0, mu0, H0)
@@ -25,7 +26,7 @@ v = velocity()  # flow velocity (zero without flow): the material derivative (3.
 common = (phi * psi / dt - g * inner(grad(mu), grad(psi))
           + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
     + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
-rhs_common = phi0 * psi / dt * dx - g * (lam_v + lam_a * kappa0) * psi * dxq
+rhs_common = phi0 * psi / dt * dx - (g * (lam_v + lam_a * kappa0) + gamma * sigma * kappa0) * psi * dxq
 
 # Taylor linearisation (section 5.3):
 #   W0''(phi) mu ~ W0''(phi^n) mu + W0'''(phi^n) mu^n (phi - phi^n)
@@ -60,7 +61,8 @@ L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q
 # (mass matrix a_mu), Lap mu integrated by parts with grad mu . n = 0 (section 3.4.1).
 phi_h = Coefficient(V)
 mu_h = Coefficient(V)
-L_dE = (-inner(grad(mu_h), grad(q)) - ddW0(phi_h, eps, H0) * mu_h * q / eps**2
-        + (lam_v + lam_a * kappa_of(phi_h, mu_h, H0)) * q) / Be * dxq
+L_dE = ((-inner(grad(mu_h), grad(q)) - ddW0(phi_h, eps, H0) * mu_h * q / eps**2
+         + (lam_v + lam_a * kappa_of(phi_h, mu_h, H0)) * q) / Be
+        + sigma * kappa_of(phi_h, mu_h, H0) * q) * dxq                   # (1/Ca) kappa, (3.84)
 
 forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu, L_dE]

@@ -13,6 +13,12 @@ namespace
 {
 std::shared_ptr<Constant> constant(double v) { return std::make_shared<Constant>(v); }
 
+/// sigma = 1/Ca of the surface tension energy (3.78), 0 unless the scene asks for it.
+double surface_tension(const scene::Scene& s)
+{
+  return s.phase_field.surface_tension ? 1 / s.numbers.Ca : 0.0;
+}
+
 /// Boundary facets on the sides of non-periodic axes: where phi = -1 (2.19) applies.
 std::vector<std::int32_t> wall_facets(const Mesh& mesh, const scene::Domain& d)
 {
@@ -52,7 +58,8 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
                 {"H0", constant(pf.spontaneous_curvature)},
                 {"S", constant(nu.stabilisation)},
                 {"lam_v", lam_v_},
-                {"lam_a", lam_a_}};
+                {"lam_a", lam_a_},
+                {"sigma", constant(surface_tension(scene))}};
 }
 
 std::int64_t PhaseFieldModule::num_dofs() const { return compat::num_global_dofs(*W_); }
@@ -207,8 +214,13 @@ void PhaseFieldModule::bind_forms()
     if (forms_.load_v)
       loads_.push_back({UnitLoad::volume, compat::create_form(*forms_.load_v, {W_}, coeffs, constants_),
                         nullptr, nullptr, lam_v_, pf.penalty_volume});
-    loads_.push_back({UnitLoad::area, compat::create_form(*forms_.load_a, {W_}, coeffs, constants_),
-                      nullptr, nullptr, lam_a_, pf.penalty_area});
+    // With surface tension the L2 flow keeps only the volume (3.83)-(3.85): the membrane
+    // area is free and the tension (1/Ca) kappa acts instead of the area multiplier.
+    const bool area_free = pf.model == Model::helfrich_lagrange && pf.surface_tension;
+    if (!area_free)
+      loads_.push_back({UnitLoad::area,
+                        compat::create_form(*forms_.load_a, {W_}, coeffs, constants_), nullptr,
+                        nullptr, lam_a_, pf.penalty_area});
     // phi^n is the linearisation point of E_CH: bound to the standalone field, which
     // holds phi^n until the step is complete.
     volume_weights_form_ = compat::create_form(*obs.volume_weights, {V_}, {}, constants_);
@@ -431,13 +443,15 @@ double PhaseFieldModule::total_energy(double phi_integral, double energy_ch, dou
   case Model::allen_cahn_volume:
   case Model::cahn_hilliard:
     return energy_ch;                                          // (2.22)
-  case Model::helfrich_lagrange:
-    return helfrich;                                           // (3.25) on the constraint set
+  case Model::helfrich_lagrange:                               // (3.25) on the constraint set
+    return helfrich + surface_tension(scene_) * energy_ch;     // + (1/Ca) E_CH, (3.78)
   case Model::helfrich_penalty:                                // (3.30)
     return helfrich + pf.penalty_volume / (2 * Be) * std::pow(phi_integral - targets_.volume, 2)
-           + pf.penalty_area / (2 * Be) * std::pow(energy_ch - targets_.area, 2);
+           + pf.penalty_area / (2 * Be) * std::pow(energy_ch - targets_.area, 2)
+           + surface_tension(scene_) * energy_ch;
   case Model::helfrich_hm1:                                    // (3.33)
-    return helfrich + pf.penalty_area / (2 * Be) * std::pow(energy_ch - targets_.area, 2);
+    return helfrich + pf.penalty_area / (2 * Be) * std::pow(energy_ch - targets_.area, 2)
+           + surface_tension(scene_) * energy_ch;
   }
   return energy_ch;
 }

@@ -12,7 +12,7 @@ void read_phase_field(const Section& top, Scene& s)
     top.fail("phase_field", "missing; every scene needs phase_field.model");
   const Section p = top.section("phase_field");
   p.allow_only({"model", "mobility", "spontaneous_curvature", "penalty_volume", "penalty_area",
-                "constraint_relaxation"});
+                "constraint_relaxation", "surface_tension"});
   if (!p.has("model"))
     p.fail("model", "missing; choose one of allen_cahn, allen_cahn_volume, cahn_hilliard, "
                     "helfrich_lagrange, helfrich_penalty, helfrich_hm1");
@@ -30,6 +30,11 @@ void read_phase_field(const Section& top, Scene& s)
   f.penalty_area = p.number("penalty_area", f.penalty_area, non_negative());
   f.constraint_relaxation = p.number("constraint_relaxation", f.constraint_relaxation,
                                      closed(0, 1));
+  f.surface_tension = p.boolean("surface_tension", f.surface_tension);
+  if (f.surface_tension && !is_helfrich(f.model))
+    p.fail("surface_tension", std::string("adds (1/Ca) E_CH to the Helfrich energy (3.78); model ")
+                                  + to_string(f.model) + " has E_CH as its energy already (the "
+                                  "flow's capillary force takes flow.surface_tension or 1/Ca)");
 }
 
 void read_numbers(const Section& top, Scene& s)

@@ -69,6 +69,8 @@ struct PhaseField
   double penalty_volume = 0;         ///< p1 of (3.30)
   double penalty_area = 0;           ///< p2 of (3.30), (3.33)
   double constraint_relaxation = 0.5; ///< drift correction of the multipliers, (1/2tau) in 5.3
+  /// Helfrich models: add the surface tension energy (1/Ca) E_CH of (3.77)-(3.78)
+  bool surface_tension = false;
 };
 
 /// Physical parameters (SI) from which the dimensionless numbers follow, (3.12)-(3.17).

@@ -44,3 +44,32 @@ def test_energy_decays_and_constraints_hold(tmp_path, model, boundary, vol_tol, 
     if area_tol is not None:
         drift = max(abs(a - length[0]) for a in length) / length[0]
         assert drift < area_tol, f"length drift {drift:.3e}"
+
+
+@pytest.mark.parametrize("model", ["helfrich_hm1", "helfrich_lagrange"])
+def test_surface_tension_adds_its_energy_and_shortens_the_membrane(tmp_path, model):
+    """phase_field.surface_tension adds (1/Ca) E_CH to the Helfrich energy, (3.77)-(3.78):
+    the force (1/Ca) kappa of (3.84)/(3.87) is explicit in kappa, like the area penalty.
+    The energy with it must decay. The membrane, free to shrink (no area penalty;
+    helfrich_lagrange with surface tension keeps only the volume multiplier, (3.83)-(3.85)),
+    must lose more than twice the length it loses without (hm1 without: bending alone;
+    lagrange without: the area multiplier holds it)."""
+    runs = {}
+    for tension in (False, True):
+        scene = circle_scene(model, epsilon=0.08, end_time=0.02, dt=1e-3)
+        scene["boundary"] = {"phi": "neumann" if model == "helfrich_hm1" else "dirichlet"}
+        scene["cells"] = [{"shape": "ellipse", "center": [0, 0], "semi_axes": [1.2, 0.7]}]
+        scene["phase_field"]["surface_tension"] = tension
+        scene["numbers"] = {"Ca": 0.1}
+        (tmp_path / str(tension)).mkdir()
+        runs[tension] = run_scene(scene, tmp_path / str(tension))
+    obs = runs[True]
+    energy = obs["total_energy"]
+    # total = Helfrich + (1/Ca) E_CH (no penalties here)
+    assert energy[0] == pytest.approx(obs["helfrich_energy"][0] + 10 * obs["energy_ch"][0],
+                                      rel=1e-12)
+    increases = [b - a for a, b in zip(energy, energy[1:])]
+    assert max(increases) <= 1e-12 * abs(energy[0]), f"energy rose by {max(increases):.3e}"
+    shrink = {t: r["surface"][0] - r["surface"][-1] for t, r in runs.items()}
+    print(f"{model}: length lost with tension {shrink[True]:.3e}, without {shrink[False]:.3e}")
+    assert shrink[True] > 2 * abs(shrink[False])
