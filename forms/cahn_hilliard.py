@@ -2,8 +2,14 @@
 #   d_t phi + v . grad phi = div(gamma grad mu),   mu = -eps Lap phi + W'(phi)/eps
 # with natural boundary conditions grad mu . n = 0. v is the velocity of the flow step
 # (model H, section 2.8), zero without flow; its term is implicit in phi^{n+1}.
-from ufl import (Coefficient, FunctionSpace, TestFunctions, TrialFunctions, dx, grad, inner,
-                 split)
+# Mobility: gamma, or gamma W(phi^n) (`degenerate` = 1), the gamma(phi) of section 2.8.
+# Walls: grad phi . n = cos(theta) (1 - phi^2) / (eps sqrt2), the contact angle of 2.8
+# (theta through phi = +1; cos_theta = 0 is the natural condition), explicit in phi^n;
+# the weak form of mu gets eps int (grad phi . n) nu ds.
+import math
+
+from ufl import (Coefficient, FunctionSpace, TestFunctions, TrialFunctions, ds, dx, grad,
+                 inner, split)
 
 from cellphase_ufl import (ADVECTION_DEGREE, QDEG, W, advection, constants, dW, ddW, domain,
                            mixed, velocity)
@@ -13,18 +19,22 @@ Wsp = FunctionSpace(domain, mixed(2))
 u0 = Coefficient(Wsp)  # (phi^n, mu^n)
 phi0, mu0 = split(u0)
 v = velocity()
-dt, eps, gamma, S = constants("dt", "eps", "gamma", "S")
+dt, eps, gamma, S, degenerate, cos_theta = constants("dt", "eps", "gamma", "S", "degenerate",
+                                                    "cos_theta")
 dxq = dx(metadata={"quadrature_degree": QDEG})
+gamma_phi = gamma * (1 - degenerate + degenerate * W(phi0))           # gamma(phi), 2.8
+wall = -cos_theta / math.sqrt(2) * (1 - phi0**2) * nu * ds           # contact angle, 2.8
 
-common = (phi * psi / dt + gamma * inner(grad(mu), grad(psi))
-          + mu * nu - eps * inner(grad(phi), grad(nu))) * dx \
+# gamma(phi) makes the mobility term a polynomial of degree 12: QDEG as for W'.
+common = (phi * psi / dt + mu * nu - eps * inner(grad(phi), grad(nu))) * dx \
+    + gamma_phi * inner(grad(mu), grad(psi)) * dxq \
     + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)        # v . grad phi, 2.8
 # Taylor linearisation of W'(phi) about phi^n (section 5.3)
 a = common - ddW(phi0) / eps * phi * nu * dxq
-L = phi0 * psi / dt * dx + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dxq
+L = phi0 * psi / dt * dx + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dxq + wall
 # Stabilised: W'(phi^n) + S (phi - phi^n), constant matrix
 a_stab = common - S / eps * phi * nu * dx
-L_stab = phi0 * psi / dt * dx + (dW(phi0) - S * phi0) / eps * nu * dxq
+L_stab = phi0 * psi / dt * dx + (dW(phi0) - S * phi0) / eps * nu * dxq + wall
 
 energy = (eps / 2 * inner(grad(phi0), grad(phi0)) + W(phi0) / eps) * dxq
 

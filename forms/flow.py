@@ -8,7 +8,7 @@ from ufl import (Coefficient, Constant, FiniteElement, FunctionSpace, MixedEleme
                  TestFunctions, TrialFunctions, VectorElement, div, dx, grad, inner,
                  max_value, min_value, sym)
 
-from cellphase_ufl import DIM, P2, QDEG, cell, constants, domain
+from cellphase_ufl import DIM, P2, QDEG, W, cell, constants, domain
 
 P2v = VectorElement("Lagrange", cell, 2)
 P1 = FiniteElement("Lagrange", cell, 1)
@@ -23,9 +23,9 @@ phi = Coefficient(Vphi)         # phase field of the last phase-field step
 mu = Coefficient(Vphi)          # its chemical potential (CH: -eps Lap phi + W'(phi)/eps)
 f_membrane = Coefficient(Vvec)  # further interface forces, provided by the coupling
 p_h = Coefficient(Q)            # pressure, for its mean value
-(dt, Re, convection, rho0, rho1, eta0, eta1, mobility, capillary,
- one) = constants("dt", "Re", "convection", "rho0", "rho1", "eta0", "eta1", "mobility",
-                  "capillary", "one")
+(dt, Re, convection, rho0, rho1, eta0, eta1, mobility, capillary, one,
+ degenerate) = constants("dt", "Re", "convection", "rho0", "rho1", "eta0", "eta1", "mobility",
+                         "capillary", "one", "degenerate")
 gravity = Constant(domain, shape=(DIM,))  # acceleration, multiplied by rho(phi)
 force = Constant(domain, shape=(DIM,))    # body force density independent of the phase
 
@@ -56,8 +56,8 @@ eta = eta_of(phic)
 # Extra mass flux of the thermodynamically consistent variable-density model (section 2.8):
 # the term d rho/d phi gamma grad(dE/dphi).grad v there equals -(J.grad) v with
 # J = -(rho1 - rho0)/2 * gamma * grad mu.
-# gamma is constant here, as in forms/cahn_hilliard.py (the thesis allows gamma(phi)).
-J = -(rho1 - rho0) / 2 * mobility * grad(mu)
+# gamma(phi) as in forms/cahn_hilliard.py: constant, or mobility W(phi) (`degenerate` = 1).
+J = -(rho1 - rho0) / 2 * mobility * (1 - degenerate + degenerate * W(phi)) * grad(mu)
 
 # Phase-dependent integrands are polynomials of degree up to 7 (rho v^n.grad v.w); the
 # clipping makes them piecewise anyway, so QDEG (6) is used as for the phase-field forms.

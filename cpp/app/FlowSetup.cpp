@@ -13,6 +13,7 @@ FlowParameters flow_parameters(const scene::Scene& scene)
   // the Helfrich coupling of 3.4.2 assumes equal densities.
   p.mobility = scene.phase_field.model == scene::Model::cahn_hilliard ? scene.phase_field.mobility
                                                                        : 0.0;
+  p.degenerate_mobility = scene.phase_field.degenerate_mobility;
   p.capillary = scene::flow_capillary(scene);
   p.gravity = f.gravity;
   p.force = f.force;

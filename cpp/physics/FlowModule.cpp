@@ -48,6 +48,7 @@ FlowModule::FlowModule(const FlowParameters& parameters, MPI_Comm comm, FlowForm
                 {"eta0", constant(p.viscosity[0])},
                 {"eta1", constant(p.viscosity[1])},
                 {"mobility", constant(p.mobility)},
+                {"degenerate", constant(p.degenerate_mobility ? 1.0 : 0.0)},
                 {"capillary", constant(p.capillary)},
                 {"one", constant(1.0)}};
   const Inextensibility& in = p.inextensibility;

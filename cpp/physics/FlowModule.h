@@ -57,6 +57,7 @@ struct FlowParameters
   std::array<double, 2> density{1, 1};
   std::array<double, 2> viscosity{1, 1}; ///< interpolated as (2.56)
   double mobility = 0;     ///< gamma of the variable-density flux J (2.8)
+  bool degenerate_mobility = false; ///< gamma(phi) = mobility W(phi) (2.8)
   double capillary = 0;    ///< prefactor of the capillary force mu grad phi (2.8)
   std::array<double, 3> gravity{0, 0, 0}; ///< times rho(phi)
   std::array<double, 3> force{0, 0, 0};   ///< constant body force density

@@ -2,6 +2,7 @@
 #include "solve/Assemble.h"
 #include "util/Clock.h"
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace cellphase
@@ -59,7 +60,11 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
                 {"S", constant(nu.stabilisation)},
                 {"lam_v", lam_v_},
                 {"lam_a", lam_a_},
-                {"sigma", constant(surface_tension(scene))}};
+                {"sigma", constant(surface_tension(scene))},
+                {"degenerate", constant(pf.degenerate_mobility ? 1.0 : 0.0)},
+                {"cos_theta", constant(scene.contact_angle_deg
+                                           ? std::cos(*scene.contact_angle_deg * std::numbers::pi / 180)
+                                           : 0.0)}};
 }
 
 std::int64_t PhaseFieldModule::num_dofs() const { return compat::num_global_dofs(*W_); }

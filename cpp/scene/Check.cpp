@@ -188,7 +188,10 @@ std::string check_report(const Scene& s)
   r.line("boundary", std::string("phi ")
                          + (s.phi_boundary == PhiBoundary::dirichlet ? "dirichlet (phi = -1)"
                                                                      : "neumann")
-                         + (d.periodic.empty() ? "" : " on the non-periodic sides"));
+                         + (d.periodic.empty() ? "" : " on the non-periodic sides")
+                         + (s.contact_angle_deg ? ", contact angle " + fmt(*s.contact_angle_deg)
+                                                      + " degrees on the walls"
+                                                : ""));
   r.line("cells", std::to_string(s.cells.size()));
   for (std::size_t i = 0; i < s.cells.size(); ++i)
     r.line("  " + s.cells[i].name, shape_text(s.cells[i], dim));

@@ -55,6 +55,9 @@ void check_geometry(const Section& top, const Scene& s)
   const Domain& d = s.domain;
   const int dim = d.dim;
   const double margin = 3 * s.numerics.epsilon;
+  // With a contact angle, drops sit on the walls: cells may touch and cross them (the
+  // part outside the box is cut off).
+  const bool wetting = s.contact_angle_deg.has_value();
   const std::vector<Section> cell_sections = top.list_of_sections("cells");
   auto cell_fail = [&](std::size_t i, const std::string& problem)
   { cell_sections[i].relabel(cell_label(i, s.cells[i])).fail(problem); };
@@ -107,7 +110,7 @@ void check_geometry(const Section& top, const Scene& s)
                           if (v >= 0)
                             continue;
                           ++inside[i];
-                          if (!in_inner_box(p))
+                          if (!in_inner_box(p) && !wetting)
                             outside(i, p);
                           if (first_inside < s.cells.size())
                             cell_fail(i, "overlaps " + cell_label(first_inside, s.cells[first_inside])
@@ -118,7 +121,7 @@ void check_geometry(const Section& top, const Scene& s)
                       });
 
   // Dense pass along the margin: catches cells that cross it between grid points.
-  if (room)
+  if (room && !wetting)
   {
     const double h = s.numerics.epsilon / (dim == 2 ? 4 : 1);
     for (std::size_t i = 0; i < r.size(); ++i)

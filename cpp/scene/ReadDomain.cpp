@@ -101,10 +101,24 @@ void read_boundary(const Section& top, Scene& s)
   const Model m = s.phase_field.model;
   const bool conserving = m == Model::cahn_hilliard || m == Model::helfrich_hm1;
   const Section b = top.section("boundary");
-  b.allow_only({"phi"});
+  b.allow_only({"phi", "contact_angle"});
   s.phi_boundary = b.choice<PhiBoundary>(
       "phi", conserving ? PhiBoundary::neumann : PhiBoundary::dirichlet,
       {{"dirichlet", PhiBoundary::dirichlet}, {"neumann", PhiBoundary::neumann}});
+  if (b.has("contact_angle"))
+  {
+    // grad phi . n = cos(theta) (1 - phi^2)/(eps sqrt2) on the walls (2.8)
+    if (m != Model::cahn_hilliard)
+      b.fail("contact_angle", std::string("is a condition of cahn_hilliard (2.8); model ")
+                                  + to_string(m) + " has none");
+    if (s.phi_boundary != PhiBoundary::neumann)
+      b.fail("contact_angle", "replaces the natural condition of phi; it cannot be combined "
+                              "with phi: dirichlet");
+    if (!s.domain.periodic.empty())
+      b.fail("contact_angle", "applies on every side of the box; a periodic axis has no "
+                              "walls (remove domain.periodic or the contact angle)");
+    s.contact_angle_deg = b.number("contact_angle", open(0.0, 180.0));
+  }
 }
 
 } // namespace cellphase::scene

@@ -70,6 +70,10 @@ void read_numerics(const Section& top, Scene& s)
       "linearisation", num.linearisation,
       {{"taylor", Linearisation::taylor}, {"stabilised", Linearisation::stabilised}});
   num.stabilisation = n.number("stabilisation", num.stabilisation, non_negative());
+  if (num.linearisation == Linearisation::stabilised && s.phase_field.degenerate_mobility)
+    n.fail("linearisation", "stabilised keeps the matrix constant, but the degenerate mobility "
+                            "gamma W(phi^n) (phase_field.mobility_law) changes it every step; "
+                            "use taylor");
   read_mesh(n.section("mesh"), num.mesh);
   read_limits(n.section("limits"), s.phase_field.model, num.limits);
   read_petsc(n.section("petsc"), num.petsc);

@@ -12,7 +12,7 @@ void read_phase_field(const Section& top, Scene& s)
     top.fail("phase_field", "missing; every scene needs phase_field.model");
   const Section p = top.section("phase_field");
   p.allow_only({"model", "mobility", "spontaneous_curvature", "penalty_volume", "penalty_area",
-                "constraint_relaxation", "surface_tension"});
+                "constraint_relaxation", "surface_tension", "mobility_law"});
   if (!p.has("model"))
     p.fail("model", "missing; choose one of allen_cahn, allen_cahn_volume, cahn_hilliard, "
                     "helfrich_lagrange, helfrich_penalty, helfrich_hm1");
@@ -31,6 +31,14 @@ void read_phase_field(const Section& top, Scene& s)
   f.constraint_relaxation = p.number("constraint_relaxation", f.constraint_relaxation,
                                      closed(0, 1));
   f.surface_tension = p.boolean("surface_tension", f.surface_tension);
+  enum class Law { constant, degenerate };
+  const Law law = p.choice<Law>("mobility_law", Law::constant,
+                                {{"constant", Law::constant}, {"degenerate", Law::degenerate}});
+  f.degenerate_mobility = law == Law::degenerate;
+  if (f.degenerate_mobility && f.model != Model::cahn_hilliard)
+    p.fail("mobility_law", std::string("degenerate (gamma W(phi), section 2.8) is for "
+                                       "cahn_hilliard; model ")
+                               + to_string(f.model) + " has a constant mobility");
   if (f.surface_tension && !is_helfrich(f.model))
     p.fail("surface_tension", std::string("adds (1/Ca) E_CH to the Helfrich energy (3.78); model ")
                                   + to_string(f.model) + " has E_CH as its energy already (the "

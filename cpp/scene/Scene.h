@@ -71,6 +71,8 @@ struct PhaseField
   double constraint_relaxation = 0.5; ///< drift correction of the multipliers, (1/2tau) in 5.3
   /// Helfrich models: add the surface tension energy (1/Ca) E_CH of (3.77)-(3.78)
   bool surface_tension = false;
+  /// cahn_hilliard: gamma(phi) = mobility W(phi) (section 2.8) instead of the constant
+  bool degenerate_mobility = false;
 };
 
 /// Physical parameters (SI) from which the dimensionless numbers follow, (3.12)-(3.17).
@@ -191,6 +193,8 @@ struct Scene
   std::string resolved_yaml;         ///< the scene's YAML after --set overrides (for checkpoints)
   Domain domain;
   PhiBoundary phi_boundary = PhiBoundary::dirichlet;
+  /// cahn_hilliard: contact angle (degrees, through phi = +1) on every wall (2.8)
+  std::optional<double> contact_angle_deg;
   std::vector<Cell> cells;
   PhaseField phase_field;
   PhysicalUnits units;
