@@ -1,7 +1,7 @@
 # Functionals written to observables.csv every step (section 5.3 and 3.2.2), on the
 # standalone P2 fields phi and mu.
 from ufl import (Coefficient, FiniteElement, FunctionSpace, SpatialCoordinate, TestFunction,
-                 conditional, dx, grad, inner, lt, sqrt)
+                 conditional, cos, dx, grad, inner, lt, sin, sqrt)
 
 from cellphase_ufl import DIM, P2, QDEG, W, cell, constants, domain, dW
 
@@ -20,6 +20,21 @@ helfrich_mu = mu**2 / (2 * eps) * dx                                           #
 com = [phit * x[i] * dx for i in range(DIM)]                                   # (5.19)
 com_0 = com[0]
 com_1 = com[1]
+# Along a periodic axis of period L a cell may lie across the periodic face. The angle of
+# int phi~ exp(i k x), k = 2 pi / L (the circular mean) locates it; the point half a period
+# away (`cut`, where phi~ = 0) is where the axis is cut open: x < cut counts as x + L, and
+# int phi~ x over the opened axis is the centre as for a cell inside the box.
+# (FFCx names constants after their variables, so each gets one)
+wave_0, wave_1, wave_2 = constants("wave_0", "wave_1", "wave_2")
+cut_0, cut_1, cut_2 = constants("cut_0", "cut_1", "cut_2")
+period_0, period_1, period_2 = constants("period_0", "period_1", "period_2")
+wave, cut = [wave_0, wave_1, wave_2], [cut_0, cut_1, cut_2]
+period = [period_0, period_1, period_2]
+com_cos = [phit * cos(wave[i] * x[i]) * dxq for i in range(DIM)]
+com_sin = [phit * sin(wave[i] * x[i]) * dxq for i in range(DIM)]
+com_open = [phit * conditional(lt(x[i], cut[i]), x[i] + period[i], x[i]) * dx for i in range(DIM)]
+com_cos_0, com_cos_1, com_sin_0, com_sin_1 = com_cos[0], com_cos[1], com_sin[0], com_sin[1]
+com_open_0, com_open_1 = com_open[0], com_open[1]
 # Second moments int phi~ x_i x_j of the cell (inclination angle of a 2D cell, in C++)
 moment_xx = phit * x[0] * x[0] * dx
 moment_xy = phit * x[0] * x[1] * dx
@@ -39,8 +54,9 @@ band = conditional(lt(abs(phi), 0.5), 1.0, 0.0)
 stretch = sqrt(2.0) * eps * sqrt(inner(grad(phi), grad(phi))) / (1 - phi**2)
 stretch_sum = band * stretch * z * dxq
 stretch_weight = band * z * dxq
-forms = [stretch_sum, stretch_weight, volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1,
+forms = [com_cos_0, com_cos_1, com_sin_0, com_sin_1, com_open_0, com_open_1, stretch_sum, stretch_weight, volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1,
          moment_xx, moment_xy, moment_yy]
 if DIM == 3:
     com_2 = com[2]
-    forms.append(com_2)
+    com_cos_2, com_sin_2, com_open_2 = com_cos[2], com_sin[2], com_open[2]
+    forms += [com_2, com_cos_2, com_sin_2, com_open_2]

@@ -162,6 +162,12 @@ std::string Simulation::save_checkpoint(const LoopState& at)
   data.set("time", at.time);
   data.set("dt", scene_.numerics.dt);
   data.set("targets.volume", module_.targets().volume);
+  for (int a = 0; a < 3; ++a)
+  {
+    data.set("centre.shift." + std::to_string(a), centre_shift_[a]);
+    data.set("centre.last." + std::to_string(a), last_centre_[a]);
+  }
+  data.set("centre.have_last", have_last_centre_ ? 1 : 0);
   data.set("targets.area", module_.targets().area);
   data.set("initial_volume", initial_volume_);
   data.set("mesh.levels", adaptive_.levels());
@@ -257,6 +263,15 @@ Simulation::LoopState Simulation::restore()
     }
     module_.set_targets({data.scalar("targets.volume"), data.scalar("targets.area")});
     initial_volume_ = data.scalar("initial_volume");
+    if (data.arrays.count("centre.have_last")) // written since the centre is unwrapped
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        centre_shift_[a] = data.scalar("centre.shift." + std::to_string(a));
+        last_centre_[a] = data.scalar("centre.last." + std::to_string(a));
+      }
+      have_last_centre_ = data.scalar("centre.have_last") != 0;
+    }
     observables_ = std::make_unique<Observables>(scene_, module_);
     LoopState at{int(data.scalar("step")), data.scalar("time")};
     log("cellphase: restarting from %s (step %d, t = %g)\n", path.c_str(), at.step, at.time);
@@ -393,6 +408,26 @@ void Simulation::check_health(const LoopState& at, const ObservableValues& v)
   }
 }
 
+void Simulation::unwrap_centre(std::array<double, 3>& centre)
+{
+  const auto& d = scene_.domain;
+  for (int a : d.periodic)
+  {
+    // The centre moves less than half a period per step; a larger jump is a crossing.
+    const double period = d.upper[a] - d.lower[a];
+    double c = centre[a] + centre_shift_[a];
+    if (have_last_centre_)
+    {
+      const double periods = std::round((last_centre_[a] - c) / period);
+      centre_shift_[a] += periods * period;
+      c += periods * period;
+    }
+    centre[a] = c;
+  }
+  last_centre_ = centre;
+  have_last_centre_ = true;
+}
+
 void Simulation::record(const LoopState& at, const StepTimings& timings, double remesh_time,
                         double volume_change)
 {
@@ -400,6 +435,7 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
   r.step = at.step;
   r.time = at.time;
   r.values = observables_->evaluate();
+  unwrap_centre(r.values.center);
   if (flow_)
   {
     const FlowObservables f = flow_->observables();

@@ -102,6 +102,11 @@ private:
   double initial_volume_ = 0;
   int last_step_ = 0;
   std::string solving_ = "phi"; ///< a field of the subproblem being solved
+  /// Along periodic axes the centre of mass is continued across the periodic faces: the
+  /// whole periods added so far, and the centre of the last row.
+  std::array<double, 3> centre_shift_{0, 0, 0}, last_centre_{0, 0, 0};
+  bool have_last_centre_ = false;
+  void unwrap_centre(std::array<double, 3>& centre);
   GoodState good_;
 };
 } // namespace cellphase

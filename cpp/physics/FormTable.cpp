@@ -85,6 +85,12 @@ ObservableForms observable_forms(int dim)
   f.area_weights = form_observables_##D##_area_weights;                                         \
   f.com[0] = form_observables_##D##_com_0;                                                      \
   f.com[1] = form_observables_##D##_com_1;                                                      \
+  f.com_cos[0] = form_observables_##D##_com_cos_0;                                              \
+  f.com_cos[1] = form_observables_##D##_com_cos_1;                                              \
+  f.com_sin[0] = form_observables_##D##_com_sin_0;                                              \
+  f.com_sin[1] = form_observables_##D##_com_sin_1;                                              \
+  f.com_open[0] = form_observables_##D##_com_open_0;                                            \
+  f.com_open[1] = form_observables_##D##_com_open_1;                                            \
   f.moments = {form_observables_##D##_moment_xx, form_observables_##D##_moment_xy,              \
                form_observables_##D##_moment_yy};                                               \
   f.p2_space = functionspace_form_observables_##D##_phi_integral;                               \
@@ -99,6 +105,9 @@ ObservableForms observable_forms(int dim)
   {
     CELLPHASE_OBSERVABLES(3d)
     f.com[2] = form_observables_3d_com_2;
+    f.com_cos[2] = form_observables_3d_com_cos_2;
+    f.com_sin[2] = form_observables_3d_com_sin_2;
+    f.com_open[2] = form_observables_3d_com_open_2;
   }
   return f;
 }

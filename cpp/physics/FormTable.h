@@ -37,6 +37,10 @@ struct ObservableForms
   ufcx_form* volume_weights = nullptr; ///< int q: volume of a P2 function as a dot product
   ufcx_form* area_weights = nullptr;   ///< int kappa(phi) q: first variation of E_CH
   std::array<ufcx_form*, 3> com{nullptr, nullptr, nullptr};
+  /// int phi~ cos(k x_i), int phi~ sin(k x_i) (centre along periodic axes; constants wave_i)
+  std::array<ufcx_form*, 3> com_cos{nullptr, nullptr, nullptr}, com_sin{nullptr, nullptr, nullptr};
+  /// int phi~ x_i with the axis opened at the constant cut_i (x < cut_i counts as x + period_i)
+  std::array<ufcx_form*, 3> com_open{nullptr, nullptr, nullptr};
   /// int phi~ x x, int phi~ x y, int phi~ y y (inclination of a 2D cell)
   std::array<ufcx_form*, 3> moments{nullptr, nullptr, nullptr};
   ufcx_space_fn p2_space = nullptr; ///< scalar P2 (coefficient "phi")

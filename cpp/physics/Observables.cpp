@@ -19,6 +19,17 @@ Observables::Observables(const scene::Scene& scene, const PhaseFieldModule& modu
     coeffs["mu"] = fields.at("mu");
   ConstantMap constants{{"eps", std::make_shared<Constant>(scene.numerics.epsilon)},
                         {"H0", std::make_shared<Constant>(scene.phase_field.spontaneous_curvature)}};
+  const auto& d = scene.domain;
+  for (int i = 0; i < 3; ++i)
+  {
+    const bool periodic = i < dim && d.is_periodic(i);
+    const double period = periodic ? d.upper[i] - d.lower[i] : 0.0;
+    const std::string axis = std::to_string(i);
+    constants["wave_" + axis] = std::make_shared<Constant>(periodic ? 2 * std::numbers::pi / period : 0.0);
+    constants["period_" + axis] = std::make_shared<Constant>(period);
+    cut_[i] = std::make_shared<Constant>(d.lower[i]);
+    constants["cut_" + axis] = cut_[i];
+  }
   auto make = [&](ufcx_form* form) { return compat::create_form(*form, {}, coeffs, constants, mesh); };
   phi_integral_ = make(f.phi_integral);
   volume_ = make(f.cell_volume);
@@ -26,7 +37,13 @@ Observables::Observables(const scene::Scene& scene, const PhaseFieldModule& modu
   if (coeffs.count("mu"))
     helfrich_ = make(f.helfrich_mu);
   for (int i = 0; i < dim; ++i)
+  {
     com_.push_back(make(f.com[i]));
+    const bool periodic = d.is_periodic(i);
+    com_cos_.push_back(periodic ? make(f.com_cos[i]) : nullptr);
+    com_sin_.push_back(periodic ? make(f.com_sin[i]) : nullptr);
+    com_open_.push_back(periodic ? make(f.com_open[i]) : nullptr);
+  }
   if (dim == 2)
     for (auto* m : f.moments)
       moments_.push_back(make(m));
@@ -69,8 +86,24 @@ ObservableValues Observables::evaluate() const
   if (helfrich_)
     v.helfrich = compat::assemble_scalar(*helfrich_) / scene_.numbers.Be;
   v.total_energy = module_.total_energy(v.phi_integral, v.energy_ch, v.helfrich);
+  const auto& d = scene_.domain;
   for (std::size_t i = 0; i < com_.size(); ++i)
-    v.center[i] = compat::assemble_scalar(*com_[i]) / v.volume;
+  {
+    if (!com_cos_[i])
+    {
+      v.center[i] = compat::assemble_scalar(*com_[i]) / v.volume;
+      continue;
+    }
+    // Periodic axis: the circular mean locates the cell, the axis is opened half a period
+    // away from it, and the centre is taken on the opened axis, back in [lower, upper).
+    const double period = d.upper[i] - d.lower[i];
+    auto wrap = [&](double x)
+    { return d.lower[i] + std::fmod(std::fmod(x - d.lower[i], period) + period, period); };
+    const double angle = std::atan2(compat::assemble_scalar(*com_sin_[i]),
+                                    compat::assemble_scalar(*com_cos_[i]));
+    cut_[i]->value[0] = wrap(angle / (2 * std::numbers::pi) * period + period / 2);
+    v.center[i] = wrap(compat::assemble_scalar(*com_open_[i]) / v.volume);
+  }
   const double pi = std::numbers::pi;
   if (!moments_.empty())
   {

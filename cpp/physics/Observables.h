@@ -13,6 +13,7 @@ struct ObservableValues
   double energy_ch = 0;     ///< (2.22)
   double helfrich = 0;      ///< (3.14), Helfrich models only (0 otherwise)
   double total_energy = 0;  ///< the energy of the model's gradient flow
+  /// int phi~ x / int phi~; along a periodic axis the circular mean, in [lower, upper)
   std::array<double, 3> center{0, 0, 0};
   double circularity = 0;   ///< (5.20); sphericity in 3D
   double phi_min = 0, phi_max = 0;
@@ -42,6 +43,9 @@ private:
   std::shared_ptr<Form> phi_integral_, volume_, energy_ch_, helfrich_;
   std::vector<std::shared_ptr<Form>> com_, moments_;
   std::shared_ptr<Form> stretch_sum_, stretch_weight_;
+  /// per axis: the circular-mean moments on periodic axes (null otherwise)
+  std::vector<std::shared_ptr<Form>> com_cos_, com_sin_, com_open_;
+  std::array<std::shared_ptr<Constant>, 3> cut_; ///< where each periodic axis is opened
   /// min and max over the cells of int_band s / |band|, cells that meet the band only
   std::pair<double, double> stretch_range() const;
 };
