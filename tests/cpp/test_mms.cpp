@@ -45,7 +45,11 @@ Errors solve_mms(int n, bool helfrich)
   ConstantMap c;
   for (auto [k, v] : std::map<std::string, double>{{"dt", 0.1}, {"eps", eps}, {"gamma", gamma_},
                                                    {"Be", Be}, {"H0", H0}, {"S", 2.0},
-                                                   {"lam_v", 0.0}, {"lam_a", 0.0}})
+                                                   {"lam_v", 0.0}, {"lam_a", 0.0},
+                                                   // no surface tension, constant mobility,
+                                                   // natural condition at the walls
+                                                   {"sigma", 0.0}, {"degenerate", 0.0},
+                                                   {"cos_theta", 0.0}})
     c[k] = std::make_shared<Constant>(v);
   // No flow: the advection velocity is zero.
   auto v = std::make_shared<Function>(
