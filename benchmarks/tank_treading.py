@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Tank-treading vesicle in simple shear with an inextensible membrane: steady inclination
-angle against reduced area and mesh level.
+"""Tank-treading vesicle with an inextensible membrane: steady angle against reduced area.
+
+Steady inclination angle of a vesicle in simple shear against reduced area and mesh level.
 
 Runs demos/vesicle-tank-treading/scene.yaml (2D, Stokes, viscosity ratio 1, local
 inextensibility (3.67)-(3.68) with xi = 1 and the global area constraint (3.69)) for the
@@ -274,8 +275,10 @@ def report(runs, failed, end_time):
 def main():
     global EXE
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--areas", type=float, nargs="+", default=[0.7, 0.8, 0.9])
-    parser.add_argument("--levels", type=int, nargs="+", default=[0, 1])
+    parser.add_argument("--areas", type=float, nargs="+", default=[0.7, 0.8, 0.9],
+                        help="reduced areas 4 pi A / L^2 in (0, 1)")
+    parser.add_argument("--levels", type=int, nargs="+", default=[0, 1],
+                        help="mesh levels (epsilon, dt / sqrt(2)^l, base cells * sqrt(2)^l)")
     parser.add_argument("--end-time", type=float, default=None,
                         help="end time instead of the scene's (to try the script)")
     parser.add_argument("--exe", type=Path, default=EXE, help="cellphase binary")
