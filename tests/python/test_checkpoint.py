@@ -54,6 +54,20 @@ def rows(run_dir):
         return list(csv.DictReader(f))
 
 
+def restart_from_shorter_run(full_scene, part_scene, tmp_path):
+    """Runs full_scene in one go and part_scene (the same scene ending earlier), then
+    continues full_scene from the newest checkpoint of the shorter run. Returns the rows of
+    the run in one go, those of the continued run, and the restart's stdout."""
+    full_dir, part_dir = tmp_path / "full", tmp_path / "part"
+    full = write_scene(full_scene, tmp_path, full_dir)
+    part = write_scene(part_scene, tmp_path, part_dir)
+    assert cellphase(["run", full]).returncode == 0
+    assert cellphase(["run", part]).returncode == 0
+    proc = cellphase(["run", full, "--restart", part_dir])
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return rows(full_dir), rows(part_dir), proc.stdout
+
+
 def assert_same_observables(a, b, rel=0.0):
     assert [r["step"] for r in a] == [r["step"] for r in b]
     for ra, rb in zip(a, b):
@@ -224,14 +238,8 @@ def bubble_flow_scene(end_time):
 def test_flow_restart_equals_uninterrupted(tmp_path):
     """The checkpoint holds v^n (and p): a coupled run to step 8 continued to step 14
     (remeshes at steps 9 and 12 after the restart) equals the run in one go bit for bit."""
-    full_dir, part_dir = tmp_path / "full", tmp_path / "part"
-    full = write_scene(bubble_flow_scene(14 / 64), tmp_path, full_dir)
-    part = write_scene(bubble_flow_scene(8 / 64), tmp_path, part_dir)
-    assert cellphase(["run", full]).returncode == 0
-    assert cellphase(["run", part]).returncode == 0
-    proc = cellphase(["run", full, "--restart", part_dir])
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert "(step 8," in proc.stdout
-    a, b = rows(full_dir), rows(part_dir)
+    a, b, stdout = restart_from_shorter_run(bubble_flow_scene(14 / 64),
+                                            bubble_flow_scene(8 / 64), tmp_path)
+    assert "(step 8," in stdout
     assert float(a[-1]["kinetic_energy"]) > 0 and float(a[-1]["rise_velocity"]) > 0
     assert_same_observables(a, b)

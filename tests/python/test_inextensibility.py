@@ -2,7 +2,6 @@
 solved with v and p; the global area constraint (3.69); the concentration variant
 (3.70)-(3.72). Scenes are the vesicle-shear demo (reduced area 0.91, Be = 10, shear rate 1)
 over its first 50 steps, and a relaxing vesicle in a closed box for the energy law."""
-import csv
 import subprocess
 from pathlib import Path
 
@@ -10,6 +9,7 @@ import pytest
 import yaml
 
 from conftest import EXE, require_exe, run_scene
+from test_checkpoint import restart_from_shorter_run
 
 ROOT = Path(__file__).resolve().parents[2]
 SHEAR = ROOT / "demos" / "vesicle-shear" / "scene.yaml"
@@ -95,27 +95,18 @@ def test_concentration_variant_runs_writes_its_fields_and_restarts_exactly(tmp_p
     checkpoints; a restart from the end of a shorter run continues the longer one. (Not
     bit for bit in the last step: the shorter run ends at t = 0.05 exactly, the longer one
     has 0.05 plus round-off there, so their last time steps differ in the last bits.)"""
-    require_exe()
     inext = {"xi": 1, "concentration": {"penalty": 1, "diffusion": 1e-3}}
     whole = shear_scene(inext, end_time=0.1)
-    whole["output"] = {"every": 10, "fields": ["phi", "lambda", "c"]}
-    (tmp_path / "whole").mkdir()
-    c = run_scene(whole, tmp_path / "whole")
-    assert max(abs(d) for d in drift(c, "surface")) < 5e-3
-    xdmf = (tmp_path / "whole" / "out" / "fields.xdmf").read_text()
-    assert 'Name="c"' in xdmf and 'Name="lambda"' in xdmf
-
-    (tmp_path / "split").mkdir()
+    whole["output"] = {"every": 10, "fields": ["phi", "lambda", "c"], "progress": False}
     first = shear_scene(inext, end_time=0.05)
-    first["output"] = {"checkpoints": {"every": 1000}}  # the end is always checkpointed
-    run_scene(first, tmp_path / "split")
-    path = tmp_path / "split" / "scene.yaml"
-    proc = subprocess.run([EXE, "run", str(path), "--restart", str(tmp_path / "split" / "out"),
-                           "--set", "numerics.end_time=0.1"], capture_output=True, text=True)
-    assert proc.returncode == 0, proc.stderr
-    with open(tmp_path / "split" / "out" / "observables.csv") as f:
-        rows = list(csv.DictReader(f))
-    restarted = {k: [float(r[k]) for r in rows] for k in rows[0]}
+    first["output"] = {"every": 0, "progress": False,
+                       "checkpoints": {"every": 1000}}  # the end is always checkpointed
+    full, continued, _ = restart_from_shorter_run(whole, first, tmp_path)
+    c = {k: [float(r[k]) for r in full] for k in full[0]}
+    restarted = {k: [float(r[k]) for r in continued] for k in continued[0]}
+    assert max(abs(d) for d in drift(c, "surface")) < 5e-3
+    xdmf = (tmp_path / "full" / "fields.xdmf").read_text()
+    assert 'Name="c"' in xdmf and 'Name="lambda"' in xdmf
     for key in ["surface", "volume", "tension_mean", "inclination_deg", "total_energy_kinetic"]:
         assert restarted[key][:-1] == c[key][:-1], key
         assert restarted[key][-1] == pytest.approx(c[key][-1], rel=1e-12), key

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from conftest import run_scene
-from test_checkpoint import assert_same_observables, cellphase, rows, write_scene
+from test_checkpoint import assert_same_observables, restart_from_shorter_run
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
 import cellphase_results  # noqa: E402
@@ -85,15 +85,9 @@ def test_periodic_restart_equals_uninterrupted(tmp_path):
     def scene(end):
         return droplet_scene(UNIFORM, dt=1 / 16, end_time=end, remesh_every=3,
                              checkpoints={"every": 4, "keep": 2})
-    full_dir, part_dir = tmp_path / "full", tmp_path / "part"
-    full = write_scene(scene(14 / 16), tmp_path, full_dir)
-    part = write_scene(scene(8 / 16), tmp_path, part_dir)
-    assert cellphase(["run", full]).returncode == 0
-    assert cellphase(["run", part]).returncode == 0
-    proc = cellphase(["run", full, "--restart", part_dir])
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert "(step 8," in proc.stdout
-    assert_same_observables(rows(full_dir), rows(part_dir))
+    full, continued, stdout = restart_from_shorter_run(scene(14 / 16), scene(8 / 16), tmp_path)
+    assert "(step 8," in stdout
+    assert_same_observables(full, continued)
 
 
 def test_periodic_droplet_on_two_ranks_equals_serial(tmp_path):
