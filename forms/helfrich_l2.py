@@ -12,11 +12,16 @@ from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, constants, ddd
                            domain, dW0, kappa_of, mixed, velocity)
 
 Wsp = FunctionSpace(domain, mixed(2))
-(phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
+(phi, mu), (psi_test, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
 u0 = Coefficient(Wsp)  # (phi^n, mu^n)
 phi0, mu0 = split(u0)
-dt, eps, gamma, Be, H0, S, lam_v, lam_a, sigma = constants(
-    "dt", "eps", "gamma", "Be", "H0", "S", "lam_v", "lam_a", "sigma")
+dt, eps, gamma, Be, H0, S, lam_v, lam_a, sigma, row_psi = constants(
+    "dt", "eps", "gamma", "Be", "H0", "S", "lam_v", "lam_a", "sigma", "row_psi")
+# Every row of the phi equation is scaled by row_psi: 1 for Taylor; -eps/g for the
+# stabilised scheme, whose psi-mu block -g (K + S/eps^2 M) then becomes eps (K + S/eps^2 M),
+# the transpose of the nu-phi block: the matrix is symmetric (without flow) and an LDL^T
+# factorisation with half the entries of LU serves it. The solution is unchanged.
+psi = row_psi * psi_test
 dxq = dx(metadata={"quadrature_degree": QDEG})
 g = gamma / Be
 kappa0 = kappa_of(phi0, mu0, H0)

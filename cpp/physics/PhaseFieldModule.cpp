@@ -45,6 +45,8 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
     : scene_(scene), comm_(comm), forms_(model_forms(scene.phase_field.model, scene.domain.dim)),
       names_(scene::model_fields(scene.phase_field.model)),
       stabilised_(scene.numerics.linearisation == scene::Linearisation::stabilised),
+      symmetrisable_(stabilised_ && (scene.phase_field.model == Model::helfrich_lagrange
+                                     || scene.phase_field.model == Model::helfrich_penalty)),
       domain_volume_(scene.domain.volume())
 {
   const auto& pf = scene.phase_field;
@@ -61,6 +63,9 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
                 {"lam_v", lam_v_},
                 {"lam_a", lam_a_},
                 {"sigma", constant(surface_tension(scene))},
+                // -eps/g with g = gamma/Be: the symmetric scaling of helfrich_l2.py
+                {"row_psi", constant(symmetrisable_ ? -nu.epsilon * scene.numbers.Be / pf.mobility
+                                                    : 1.0)},
                 {"degenerate", constant(pf.degenerate_mobility ? 1.0 : 0.0)},
                 {"cos_theta", constant(scene.contact_angle_deg
                                            ? std::cos(*scene.contact_angle_deg * std::numbers::pi / 180)
@@ -133,7 +138,7 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   bind_forms();
   A_.reset();
   matrix_current_ = false;
-  solver_ = std::make_unique<LinearSolver>(comm_, "phasefield_", scene_.numerics.petsc);
+  solver_.reset();
   // From the constraint: with periodic axes their ghosts include remote masters.
   b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   x_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
@@ -160,7 +165,8 @@ std::shared_ptr<const Function> PhaseFieldModule::interface_potential()
     auto a = compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_);
     dE_mass_ = create_matrix(*a);
     assemble_matrix(dE_mass_->mat(), *a, {});
-    dE_solver_ = std::make_unique<LinearSolver>(comm_, "mass_", std::map<std::string, std::string>{});
+    dE_solver_ = std::make_unique<LinearSolver>(comm_, "mass_", std::map<std::string, std::string>{},
+                                                Symmetry::positive_definite);
     dE_solver_->set_operator(dE_mass_->mat());
     update_interface_potential();
   }
@@ -185,6 +191,8 @@ void PhaseFieldModule::set_velocity(std::shared_ptr<const Function> v)
     throw std::invalid_argument("phase field: the velocity must live on the current mesh");
   velocity_ = v;
   flowing_ = true;
+  if (symmetrisable_)
+    solver_.reset(); // advection makes the matrix unsymmetric: LU from now on
   bind_system_forms();
   matrix_current_ = false;
 }
@@ -253,7 +261,7 @@ void PhaseFieldModule::compute_mu_from_phi()
   assemble_matrix(M->mat(), *a, {});
   la::Vector<T> b(V_->dofmap()->index_map, 1);
   assemble_rhs(b, *L, a, {});
-  LinearSolver mass(comm_, "mass_", {});
+  LinearSolver mass(comm_, "mass_", {}, Symmetry::positive_definite);
   mass.set_operator(M->mat());
   mass.solve(b, *fields_.at("mu")->x(), "the initial mu projection");
 }
@@ -412,6 +420,10 @@ StepTimings PhaseFieldModule::step(double dt)
   t.assemble = seconds_since(t0);
   if (rebuild)
   {
+    if (!solver_)
+      solver_ = std::make_unique<LinearSolver>(comm_, "phasefield_", scene_.numerics.petsc,
+                                               symmetrisable_ && !flowing_ ? Symmetry::symmetric
+                                                                           : Symmetry::general);
     t.factorise = solver_->set_operator(A_->mat());
     ++factorisations_;
     for (auto& load : loads_)

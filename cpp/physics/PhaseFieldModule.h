@@ -91,6 +91,9 @@ private:
   ModelForms forms_;
   std::vector<std::string> names_;
   bool stabilised_;
+  /// Stabilised L2 Helfrich flow: its phi rows are scaled (row_psi in helfrich_l2.py) so
+  /// that the matrix is symmetric as long as no flow adds advection.
+  bool symmetrisable_;
 
   std::shared_ptr<Space> V_, W_;
   FieldMap fields_;
@@ -128,7 +131,7 @@ private:
   std::unique_ptr<PeriodicConstraint> periodic_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
-  std::unique_ptr<LinearSolver> solver_;
+  std::unique_ptr<LinearSolver> solver_; ///< created at the first factorisation on a mesh
   bool matrix_current_ = false; ///< stabilised scheme: matrix assembled and factorised
   ConstantMap constants_;
   std::shared_ptr<Constant> dt_, lam_v_, lam_a_;

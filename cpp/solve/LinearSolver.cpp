@@ -5,13 +5,13 @@
 namespace cellphase
 {
 LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix,
-                           const std::map<std::string, std::string>& options)
-    : prefix_(prefix)
+                           const std::map<std::string, std::string>& options, Symmetry symmetry)
+    : prefix_(prefix), symmetry_(symmetry)
 {
   // Defaults first, the scene's options on top: both go to PETSc's options database
   // under this solver's prefix so that several solvers do not share settings.
   std::map<std::string, std::string> all{{"ksp_type", "preonly"},
-                                         {"pc_type", "lu"},
+                                         {"pc_type", symmetry == Symmetry::general ? "lu" : "cholesky"},
                                          {"pc_factor_mat_solver_type", "mumps"}};
   for (const auto& [k, v] : options)
     all[k] = v;
@@ -27,6 +27,13 @@ LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
 double LinearSolver::set_operator(Mat A)
 {
   auto t0 = Clock::now();
+  if (symmetry_ != Symmetry::general)
+  {
+    MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE);
+    MatSetOption(A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE);
+  }
+  if (symmetry_ == Symmetry::positive_definite)
+    MatSetOption(A, MAT_SPD, PETSC_TRUE);
   KSPSetOperators(ksp_, A, A);
   KSPSetUp(ksp_);
   return seconds_since(t0);

@@ -1,5 +1,6 @@
-// A PETSc KSP with its own options prefix. Direct MUMPS LU by default; the scene's
-// numerics.petsc options override. Factorisations are reused until the operator changes.
+// A PETSc KSP with its own options prefix. Direct MUMPS LU by default (LDL^T for a
+// symmetric operator); the scene's numerics.petsc options override. Factorisations are
+// reused until the operator changes.
 #pragma once
 #include "compat/Dolfinx.h"
 #include <map>
@@ -15,11 +16,21 @@ struct SolverError : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
+/// What the caller knows about every operator it will pass: a symmetric one is factorised
+/// as L D L^T (MUMPS keeps half the entries of LU, and a solve reads half as much).
+enum class Symmetry
+{
+  general,
+  symmetric,
+  positive_definite
+};
+
 class LinearSolver
 {
 public:
   LinearSolver(MPI_Comm comm, const std::string& prefix,
-               const std::map<std::string, std::string>& options);
+               const std::map<std::string, std::string>& options,
+               Symmetry symmetry = Symmetry::general);
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
@@ -37,5 +48,6 @@ public:
 private:
   KSP ksp_ = nullptr;
   std::string prefix_;
+  Symmetry symmetry_;
 };
 } // namespace cellphase
