@@ -9,12 +9,14 @@ Runs, side by side on this machine, and writes a markdown report:
   2. the finest member on the adaptive mesh against the uniform mesh of the same smallest
      cell (first steps only): DOFs, wall time, difference of the observables;
   3. the Taylor (thesis) against the stabilised constant-matrix linearisation at equal time
-     step on the middle member, and the stabilised scheme at smaller steps, all measured
-     against a Taylor run with dt/4: time per step, errors;
-  4. the finest member on 1 and 2 MPI ranks;
+     step on the middle member, and the stabilised scheme at steps halved until it is as
+     accurate as Taylor, all measured against a Taylor run with dt/16: wall time, time per
+     step, errors;
+  4. the finest member on 1 and 2 MPI ranks (alternating, three times);
   5. MUMPS factorisation time with reference BLAS against OpenBLAS;
   6. peak memory of the default demo.
-Usage: /usr/bin/python3 benchmarks/vesicle_benchmark.py [--quick] [--out FILE]
+Usage: /usr/bin/python3 benchmarks/vesicle_benchmark.py [--quick] [--sections 1 .. 6]
+                                                          [--out FILE]
 """
 import argparse
 import csv
@@ -100,6 +102,8 @@ def time_per_step(cols, without_factorisation=False):
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--quick", action="store_true", help="shorter runs (to try the script)")
+    p.add_argument("--sections", type=int, nargs="+", default=[1, 2, 3, 4, 5, 6],
+                   choices=range(1, 7), help="run only these sections of the report")
     p.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "vesicle-relaxation.md"))
     a = p.parse_args()
     if not EXE.exists():
@@ -113,112 +117,163 @@ def main():
              f"scene `demos/vesicle-relaxation/scene.yaml` (helfrich_lagrange), end time {end}.",
              ""]
 
-    # First, while no larger run has raised the children's peak memory.
-    print("6. peak memory of the default demo")
-    _, demo_wall, demo_peak = run("demo", {"numerics.end_time": end} if a.quick else {})
+    ladder = {}
 
-    print("1. epsilon ladder")
-    ladder = {n: run(f"ladder_n{n}", {**member(n), "numerics.end_time": end}) for n in ns}
-    ref = ladder[ns[-1]][0]
-    lines += ["## 1. Convergence in epsilon (mesh and time step scaled with it)", "",
-              "| eps | dofs | steps | wall s | " + " | ".join(f"{k} ||e||_2 | ROC" for k in OBSERVABLES) + " |",
-              "|" + "---|" * (4 + 2 * len(OBSERVABLES))]
-    prev = None
-    for n in ns[:-1]:
-        cols, wall, _ = ladder[n]
-        errs = [error_norm(ref, cols, k) for k in OBSERVABLES]
-        eps = 0.64 / n
-        cells = []
-        for i, e in enumerate(errs):
-            roc = (math.log(prev[1][i] / e) / math.log(prev[0] / eps)) if prev and e > 0 and prev[1][i] > 0 else float("nan")
-            cells.append(f"{e:.3e} | {'' if math.isnan(roc) else f'{roc:.2f}'}")
-        lines.append(f"| {eps:.4f} | {int(cols['dofs'][-1])} | {len(cols['time']) - 1} | {wall:.1f} | " + " | ".join(cells) + " |")
-        prev = (eps, errs)
-    cols, wall, _ = ladder[ns[-1]]
-    lines.append(f"| {0.64 / ns[-1]:.4f} | {int(cols['dofs'][-1])} | {len(cols['time']) - 1} | {wall:.1f} | reference |" + " |" * (2 * len(OBSERVABLES) - 1))
-    lines.append("")
+    def ladder_run(n):
+        """Member n of the epsilon ladder, run once (sections 1 and 4 share it)."""
+        if n not in ladder:
+            ladder[n] = run(f"ladder_n{n}", {**member(n), "numerics.end_time": end})
+        return ladder[n]
 
-    print("2. adaptive against uniform mesh")
-    n = ns[-1]
-    steps = 5 if a.quick else 20
-    short = {**member(n), "numerics.end_time": steps * 0.05 * 0.64 / n}
-    adaptive, wa, _ = run("adaptive", short)
-    uniform, wu, _ = run("uniform", {**short, "domain.resolution": f"[{8 * n},{8 * n}]",
-                                     "numerics.mesh.max_levels": 0})
-    diffs = {k: abs(adaptive[k][-1] - uniform[k][-1]) / abs(uniform[k][-1]) for k in OBSERVABLES}
-    lines += ["## 2. Adaptive mesh against the uniform mesh of the same smallest cell", "",
-              f"Finest member, first {steps} steps.", "",
-              "| mesh | dofs | wall s | time per step s |", "|---|---|---|---|",
-              f"| adaptive | {int(adaptive['dofs'][-1])} | {wa:.1f} | {time_per_step(adaptive):.3f} |",
-              f"| uniform | {int(uniform['dofs'][-1])} | {wu:.1f} | {time_per_step(uniform):.3f} |",
-              "",
-              f"Ratio uniform/adaptive: dofs {uniform['dofs'][-1] / adaptive['dofs'][-1]:.2f}, "
-              f"wall time {wu / wa:.2f}.",
-              "Relative difference of the observables at the last step: "
-              + ", ".join(f"{k} {v:.2e}" for k, v in diffs.items()) + ".", ""]
+    if 6 in a.sections:  # first, while no larger run has raised the children's peak memory
+        print("6. peak memory of the default demo")
+        _, demo_wall, demo_peak = run("demo", {"numerics.end_time": end} if a.quick else {})
 
-    print("3. Taylor against stabilised linearisation")
-    n = ns[1]
-    base = {**member(n), "numerics.end_time": end}
-    dt = 0.05 * 0.64 / n
-    reference, _, _ = run("taylor_dt4", {**base, "numerics.dt": dt / 4})
-    variants = [("taylor", dt), ("stabilised", dt), ("stabilised", dt / 2), ("stabilised", dt / 4)]
-    lines += ["## 3. Thesis (Taylor) against stabilised constant-matrix linearisation", "",
-              f"Middle member (eps = {0.64 / n:.4f}); errors against a Taylor run with dt/4.", "",
-              "| scheme | dt | time per step s | same, steps reusing the factorisation | " + " | ".join(f"{k} ||e||_2" for k in OBSERVABLES) + " |",
-              "|" + "---|" * (4 + len(OBSERVABLES))]
-    results = []
-    for scheme, d in variants:
-        cols, wall, _ = run(f"{scheme}_dt{d:.2e}", {**base, "numerics.dt": d, "numerics.linearisation": scheme})
-        errs = [error_norm(reference, cols, k) for k in OBSERVABLES]
-        tps = time_per_step(cols)
-        reuse = time_per_step(cols, without_factorisation=True) if scheme == "stabilised" else float("nan")
-        results.append((scheme, d, tps, errs, reuse))
-        lines.append(f"| {scheme} | {d:.2e} | {tps:.3f} | {'-' if math.isnan(reuse) else f'{reuse:.3f}'} | "
-                     + " | ".join(f"{e:.3e}" for e in errs) + " |")
-    t_taylor = results[0][2]
-    t_stab = results[1][2]
-    t_reuse = results[1][4]
-    target = results[0][3][0]
-    match = next((d for s, d, _, e, _ in results[1:] if e[0] <= target), None)
-    lines += ["", f"Time per step, Taylor / stabilised at equal dt: {t_taylor / t_stab:.1f}x over all "
-              f"steps (the stabilised matrix is factorised again after every remesh), "
-              f"{t_taylor / t_reuse:.1f}x for the steps that reuse the factorisation.",
-              "Helfrich-energy error of the stabilised scheme at equal dt: "
-              f"{results[1][3][0]:.2e} against {target:.2e} for Taylor; the stabilised scheme "
-              + (f"matches the Taylor accuracy at dt = {match:.2e}." if match else
-                 "does not reach the Taylor accuracy down to dt/4."), ""]
+    if 1 in a.sections:
+        print("1. epsilon ladder")
+        for n in ns:
+            ladder_run(n)
+        ref = ladder[ns[-1]][0]
+        lines += ["## 1. Convergence in epsilon (mesh and time step scaled with it)", "",
+                  "| eps | dofs | steps | wall s | " + " | ".join(f"{k} ||e||_2 | ROC" for k in OBSERVABLES) + " |",
+                  "|" + "---|" * (4 + 2 * len(OBSERVABLES))]
+        prev = None
+        for n in ns[:-1]:
+            cols, wall, _ = ladder[n]
+            errs = [error_norm(ref, cols, k) for k in OBSERVABLES]
+            eps = 0.64 / n
+            cells = []
+            for i, e in enumerate(errs):
+                roc = (math.log(prev[1][i] / e) / math.log(prev[0] / eps)) if prev and e > 0 and prev[1][i] > 0 else float("nan")
+                cells.append(f"{e:.3e} | {'' if math.isnan(roc) else f'{roc:.2f}'}")
+            lines.append(f"| {eps:.4f} | {int(cols['dofs'][-1])} | {len(cols['time']) - 1} | {wall:.1f} | " + " | ".join(cells) + " |")
+            prev = (eps, errs)
+        cols, wall, _ = ladder[ns[-1]]
+        lines.append(f"| {0.64 / ns[-1]:.4f} | {int(cols['dofs'][-1])} | {len(cols['time']) - 1} | {wall:.1f} | reference |" + " |" * (2 * len(OBSERVABLES) - 1))
+        lines.append("")
 
-    print("4. 1 against 2 MPI ranks")
-    n = ns[-1]
-    serial_cols, serial_wall, _ = ladder[n]
-    one_thread = {"OPENBLAS_NUM_THREADS": "1"}  # two ranks already use both cores
-    single, single_wall, _ = run("mpi1_blas1", {**member(n), "numerics.end_time": end}, env=one_thread)
-    par, par_wall, _ = run("mpi2", {**member(n), "numerics.end_time": end}, ranks=2, env=one_thread)
-    lines += ["## 4. MPI ranks", "", f"Finest member (eps = {0.64 / n:.4f}).", "",
-              "| ranks | BLAS threads per rank | wall s | time per step s |", "|---|---|---|---|",
-              f"| 1 | 2 (OpenBLAS default) | {serial_wall:.1f} | {time_per_step(serial_cols):.3f} |",
-              f"| 1 | 1 | {single_wall:.1f} | {time_per_step(single):.3f} |",
-              f"| 2 | 1 | {par_wall:.1f} | {time_per_step(par):.3f} |", "",
-              f"Speed-up of 2 ranks: {serial_wall / par_wall:.2f}x against 1 rank with 2 BLAS "
-              f"threads, {single_wall / par_wall:.2f}x against 1 rank with 1 BLAS thread. "
-              "Largest relative difference of the observables (2 ranks against 1): " + ", ".join(
-                  f"{k} {max(abs(x - y) / max(abs(x), 1e-300) for x, y in zip(serial_cols[k], par[k])):.1e}"
-                  for k in OBSERVABLES) + ".", ""]
+    if 2 in a.sections:
+        print("2. adaptive against uniform mesh")
+        n = ns[-1]
+        steps = 5 if a.quick else 20
+        short = {**member(n), "numerics.end_time": steps * 0.05 * 0.64 / n}
+        adaptive, wa, _ = run("adaptive", short)
+        uniform, wu, _ = run("uniform", {**short, "domain.resolution": f"[{8 * n},{8 * n}]",
+                                         "numerics.mesh.max_levels": 0})
+        diffs = {k: abs(adaptive[k][-1] - uniform[k][-1]) / abs(uniform[k][-1]) for k in OBSERVABLES}
+        lines += ["## 2. Adaptive mesh against the uniform mesh of the same smallest cell", "",
+                  f"Finest member, first {steps} steps.", "",
+                  "| mesh | dofs | wall s | time per step s |", "|---|---|---|---|",
+                  f"| adaptive | {int(adaptive['dofs'][-1])} | {wa:.1f} | {time_per_step(adaptive):.3f} |",
+                  f"| uniform | {int(uniform['dofs'][-1])} | {wu:.1f} | {time_per_step(uniform):.3f} |",
+                  "",
+                  f"Ratio uniform/adaptive: dofs {uniform['dofs'][-1] / adaptive['dofs'][-1]:.2f}, "
+                  f"wall time {wu / wa:.2f}.",
+                  "Relative difference of the observables at the last step: "
+                  + ", ".join(f"{k} {v:.2e}" for k, v in diffs.items()) + ".", ""]
 
-    print("5. BLAS")
-    short = {**member(ns[-1]), "numerics.end_time": 5 * 0.05 * 0.64 / ns[-1]}
-    ref_blas, w_ref, _ = run("blas_reference", short, env={"LD_LIBRARY_PATH": REFERENCE_BLAS})
-    open_blas, w_open, _ = run("blas_openblas", short, env={"OPENBLAS_NUM_THREADS": "1"})
-    f_ref = sum(ref_blas["wall_factorise"][1:]) / 5
-    f_open = sum(open_blas["wall_factorise"][1:]) / 5
-    lines += ["## 5. BLAS for the MUMPS factorisation", "",
-              "| BLAS | factorisation s (mean of 5) |", "|---|---|",
-              f"| reference (netlib) | {f_ref:.3f} |", f"| OpenBLAS (1 thread) | {f_open:.3f} |", "",
-              f"OpenBLAS is {f_ref / f_open:.2f}x faster per factorisation.", ""]
+    if 3 in a.sections:
+        print("3. Taylor against stabilised linearisation")
+        n = ns[1]
+        dt = 0.05 * 0.64 / n
+        remesh = 10  # the demo's interval; scaled with 1/dt below so that every run remeshes
+        #              at the same times and the error is that of the time step alone
 
-    lines += ["## 6. Default demo", "", f"Wall time {demo_wall:.1f} s, peak resident memory "
-              f"{demo_peak:.0f} MB.", ""]
+        def at_step(d, scheme):
+            k = round(dt / d)
+            return {**member(n), "numerics.end_time": end, "numerics.dt": d,
+                    "numerics.linearisation": scheme, "numerics.mesh.remesh_every": remesh * k}
+
+        ref_div = 4 if a.quick else 16
+        reference, _, _ = run(f"taylor_dt{ref_div}", at_step(dt / ref_div, "taylor"))
+        lines += ["## 3. Thesis (Taylor) against stabilised constant-matrix linearisation", "",
+                  f"Middle member (eps = {0.64 / n:.4f}); errors against a Taylor run with "
+                  f"dt/{ref_div}. Every run remeshes at the same times (every {remesh} steps of "
+                  f"dt = {dt:.2e}), so the differences come from the time step.", "",
+                  "| scheme | dt | wall s | time per step s | same, steps reusing the factorisation | "
+                  + " | ".join(f"{k} ||e||_2" for k in OBSERVABLES) + " |",
+                  "|" + "---|" * (5 + len(OBSERVABLES))]
+        results = []
+
+        def measure(scheme, d):
+            cols, wall, _ = run(f"{scheme}_dt{d:.2e}", at_step(d, scheme))
+            errs = [error_norm(reference, cols, k) for k in OBSERVABLES]
+            reuse = (time_per_step(cols, without_factorisation=True) if scheme == "stabilised"
+                     else float("nan"))
+            results.append((scheme, d, time_per_step(cols), errs, reuse, wall))
+            lines.append(f"| {scheme} | {d:.2e} | {wall:.1f} | {results[-1][2]:.4f} | "
+                         f"{'-' if math.isnan(reuse) else f'{reuse:.4f}'} | "
+                         + " | ".join(f"{e:.3e}" for e in errs) + " |")
+            return errs[0]
+
+        target = measure("taylor", dt)
+        # Halve the stabilised step until its Helfrich-energy error is the Taylor one's.
+        match = None
+        for k in (1, 2, 4) if a.quick else (1, 2, 4, 8, 16, 32, 64):
+            if measure("stabilised", dt / k) <= target:
+                match = results[-1]
+                break
+        taylor, stab = results[0], results[1]
+        lines += ["", f"Time per step, Taylor / stabilised at equal dt: {taylor[2] / stab[2]:.1f}x over "
+                  f"all steps (the stabilised matrix is factorised again after every remesh), "
+                  f"{taylor[2] / stab[4]:.1f}x for the steps that reuse the factorisation.",
+                  "Helfrich-energy error of the stabilised scheme at equal dt: "
+                  f"{stab[3][0]:.2e} against {target:.2e} for Taylor."]
+        if match:
+            lines.append(f"The stabilised scheme matches the Taylor accuracy at dt = {match[1]:.2e} "
+                         f"(dt/{round(dt / match[1])}): that run takes {match[5]:.1f} s against "
+                         f"{taylor[5]:.1f} s for Taylor at dt ({taylor[5] / match[5]:.2f}x).")
+        else:
+            lines.append(f"The stabilised scheme does not reach the Taylor accuracy down to "
+                         f"dt/{round(dt / results[-1][1])}.")
+        lines.append("")
+
+    if 4 in a.sections:
+        print("4. 1 against 2 MPI ranks")
+        n = ns[-1]
+        serial_cols, serial_wall, _ = ladder_run(n)
+        one_thread = {"OPENBLAS_NUM_THREADS": "1"}  # two ranks already use both cores
+        repeats = 1 if a.quick else 3  # the machine is shared: alternate and take the median
+        pairs = []
+        for r in range(repeats):
+            single, single_wall, _ = run("mpi1_blas1", {**member(n), "numerics.end_time": end},
+                                         env=one_thread)
+            par, par_wall, _ = run("mpi2", {**member(n), "numerics.end_time": end}, ranks=2,
+                                   env=one_thread)
+            pairs.append((single_wall, par_wall, time_per_step(single), time_per_step(par)))
+        lines += ["## 4. MPI ranks", "",
+                  f"Finest member (eps = {0.64 / n:.4f}). 1 and 2 ranks with one BLAS thread each "
+                  f"run alternately, {repeats} times.", "",
+                  "| run | ranks | BLAS threads per rank | wall s | time per step s | speed-up of 2 ranks |",
+                  "|---|---|---|---|---|---|",
+                  f"| ladder | 1 | 2 (OpenBLAS default) | {serial_wall:.1f} | "
+                  f"{time_per_step(serial_cols):.3f} | |"]
+        for r, (w1, w2, t1, t2) in enumerate(pairs):
+            lines += [f"| {r + 1} | 1 | 1 | {w1:.1f} | {t1:.3f} | |",
+                      f"| {r + 1} | 2 | 1 | {w2:.1f} | {t2:.3f} | {w1 / w2:.2f}x |"]
+        speedups = sorted(w1 / w2 for w1, w2, _, _ in pairs)
+        lines += ["", f"Speed-up of 2 ranks over 1 (one BLAS thread each): median "
+                  f"{speedups[len(speedups) // 2]:.2f}x, range {speedups[0]:.2f}x to "
+                  f"{speedups[-1]:.2f}x. Largest relative difference of the observables "
+                  "(2 ranks against 1): " + ", ".join(
+                      f"{k} {max(abs(x - y) / max(abs(x), 1e-300) for x, y in zip(single[k], par[k])):.1e}"
+                      for k in OBSERVABLES) + ".", ""]
+
+    if 5 in a.sections:
+        print("5. BLAS")
+        short = {**member(ns[-1]), "numerics.end_time": 5 * 0.05 * 0.64 / ns[-1]}
+        ref_blas, w_ref, _ = run("blas_reference", short, env={"LD_LIBRARY_PATH": REFERENCE_BLAS})
+        open_blas, w_open, _ = run("blas_openblas", short, env={"OPENBLAS_NUM_THREADS": "1"})
+        f_ref = sum(ref_blas["wall_factorise"][1:]) / 5
+        f_open = sum(open_blas["wall_factorise"][1:]) / 5
+        lines += ["## 5. BLAS for the MUMPS factorisation", "",
+                  "| BLAS | factorisation s (mean of 5) |", "|---|---|",
+                  f"| reference (netlib) | {f_ref:.3f} |", f"| OpenBLAS (1 thread) | {f_open:.3f} |", "",
+                  f"OpenBLAS is {f_ref / f_open:.2f}x faster per factorisation.", ""]
+
+    if 6 in a.sections:
+        lines += ["## 6. Default demo", "", f"Wall time {demo_wall:.1f} s, peak resident memory "
+                  f"{demo_peak:.0f} MB.", ""]
 
     Path(a.out).parent.mkdir(parents=True, exist_ok=True)
     Path(a.out).write_text("\n".join(lines))
