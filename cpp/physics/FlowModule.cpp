@@ -140,7 +140,11 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
   A_ = std::make_unique<la::petsc::Matrix>(periodic_->create_matrix(*a_));
   b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   x_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
-  solver_ = std::make_unique<LinearSolver>(comm_, "flow_", params_.petsc);
+  // Without the transport terms (v^n.grad) v and (J.grad) v the matrix of forms/flow.py
+  // (and of flow_inextensible.py) is symmetric: L D L^T instead of LU.
+  const bool symmetric = params_.Re == 0 || !params_.convection;
+  solver_ = std::make_unique<LinearSolver>(comm_, "flow_", params_.petsc,
+                                           symmetric ? Symmetry::symmetric : Symmetry::general);
   factorised_ = false;
 }
 
