@@ -42,6 +42,17 @@ def run_scene(scene, workdir, ranks=1, timeout=900):
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
+def assert_same_as_lu(runs, keys, tol=1e-9):
+    """runs["default"] (the symmetric L D L^T factorisation) against runs["lu"]: the largest
+    difference of each observable relative to max(1, |value|) (quantities that are 0 up to
+    round-off, such as a centre at the origin, are compared absolutely) must be below tol."""
+    for key in keys:
+        a, b = runs["default"][key], runs["lu"][key]
+        diff = max(abs(x - y) for x, y in zip(a, b)) / max([1.0] + [abs(x) for x in b])
+        print(f"{key}: L D L^T against LU {diff:.1e}")
+        assert diff < tol, f"{key}: L D L^T and LU differ by {diff:.2e}"
+
+
 def circle_scene(model, epsilon=0.08, radius=1.0, **numerics):
     """A circle (or ellipse with semi_axes) in [-2, 2]^2 for quick runs."""
     return {
