@@ -49,7 +49,9 @@ Errors solve_mms(int n, bool helfrich)
                                                    // no surface tension, constant mobility,
                                                    // natural condition at the walls
                                                    {"sigma", 0.0}, {"degenerate", 0.0},
-                                                   {"cos_theta", 0.0}})
+                                                   {"cos_theta", 0.0},
+                                                   // the Taylor rows, unscaled
+                                                   {"row_psi", 1.0}})
     c[k] = std::make_shared<Constant>(v);
   // No flow: the advection velocity is zero.
   auto v = std::make_shared<Function>(
