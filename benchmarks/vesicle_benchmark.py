@@ -209,7 +209,7 @@ def main():
         target = measure("taylor", dt)
         # Halve the stabilised step until its Helfrich-energy error is the Taylor one's.
         match = None
-        for k in (1, 2, 4) if a.quick else (1, 2, 4, 8, 16, 32, 64):
+        for k in (1, 2, 4) if a.quick else (1, 2, 4, 8, 16, 32, 64, 128):
             if measure("stabilised", dt / k) <= target:
                 match = results[-1]
                 break

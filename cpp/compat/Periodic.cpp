@@ -178,30 +178,57 @@ void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
                                          std::shared_ptr<const Form> a, const BCs& bcs) const
 {
   b.set(0.0);
+  assemble_unscattered(b, L);
+  add_lifting(b, a, bcs);
+  b.scatter_rev(std::plus<T>());
+  fem::set_bc<T>(b.mutable_array(), bcs);
+}
+
+void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
+                                         const la::Vector<T>& lifting, const BCs& bcs) const
+{
+  b.set(0.0);
+  assemble_unscattered(b, L);
+  std::transform(b.array().begin(), b.array().end(), lifting.array().begin(),
+                 b.mutable_array().begin(), std::plus<T>());
+  b.scatter_rev(std::plus<T>());
+  fem::set_bc<T>(b.mutable_array(), bcs);
+}
+
+la::Vector<T> PeriodicConstraint::lifting(std::shared_ptr<const Form> a, const BCs& bcs) const
+{
+  la::Vector<T> l = create_vector();
+  l.set(0.0);
+  add_lifting(l, a, bcs);
+  return l;
+}
+
+void PeriodicConstraint::assemble_unscattered(la::Vector<T>& b, const Form& L) const
+{
+  if (mpc_)
+    dolfinx_mpc::assemble_vector(b.mutable_array(), L, mpc_);
+  else
+    fem::assemble_vector(b.mutable_array(), L);
+}
+
+void PeriodicConstraint::add_lifting(la::Vector<T>& b, std::shared_ptr<const Form> a,
+                                     const BCs& bcs) const
+{
   if (mpc_)
   {
-    dolfinx_mpc::assemble_vector(b.mutable_array(), L, mpc_);
     BCs lifted = bcs;
     if (constants_lift_)
       lifted.push_back(constants_lift_);
     dolfinx_mpc::apply_lifting(b.mutable_array(), {a}, {lifted}, {}, 1.0, mpc_);
   }
   else
-  {
-    fem::assemble_vector(b.mutable_array(), L);
     fem::apply_lifting<T>(b.mutable_array(), {a}, {bcs}, {}, 1.0);
-  }
-  b.scatter_rev(std::plus<T>());
-  fem::set_bc<T>(b.mutable_array(), bcs);
 }
 
 void PeriodicConstraint::assemble_load(la::Vector<T>& b, const Form& L, const BCs& bcs) const
 {
   b.set(0.0);
-  if (mpc_)
-    dolfinx_mpc::assemble_vector(b.mutable_array(), L, mpc_);
-  else
-    fem::assemble_vector(b.mutable_array(), L);
+  assemble_unscattered(b, L);
   b.scatter_rev(std::plus<T>());
   fem::set_bc<T>(b.mutable_array(), bcs, 0.0);
 }

@@ -44,6 +44,13 @@ public:
   /// b <- L with lifting of the Dirichlet values of bcs through a, scattered, BC values set.
   void assemble_vector(dolfinx::la::Vector<T>& b, const Form& L, std::shared_ptr<const Form> a,
                        const BCs& bcs) const;
+  /// The same with the lifting from lifting(a, bcs), which stays valid while the matrix of
+  /// a and the Dirichlet values do not change (a reused factorisation).
+  void assemble_vector(dolfinx::la::Vector<T>& b, const Form& L,
+                       const dolfinx::la::Vector<T>& lifting, const BCs& bcs) const;
+  /// The lifting -A g of the Dirichlet values g of bcs through a, before the ghost
+  /// accumulation (for the overload above).
+  dolfinx::la::Vector<T> lifting(std::shared_ptr<const Form> a, const BCs& bcs) const;
 
   /// After a solve into x (from create_vector): slave values from their masters, then
   /// copied into u (a function on V).
@@ -55,6 +62,11 @@ public:
   void assemble_load(dolfinx::la::Vector<T>& b, const Form& L, const BCs& bcs) const;
 
 private:
+  /// b += L on owned and ghost entries (no ghost accumulation, no BC values).
+  void assemble_unscattered(dolfinx::la::Vector<T>& b, const Form& L) const;
+  /// b += -A g (the Dirichlet values of bcs and the constant slave parts through a).
+  void add_lifting(dolfinx::la::Vector<T>& b, std::shared_ptr<const Form> a, const BCs& bcs) const;
+
   std::shared_ptr<const Space> V_;
   std::shared_ptr<dolfinx_mpc::MultiPointConstraint<T>> mpc_;
   /// Slaves with Dirichlet masters: u_s = sum c u_m + constant (local slave, constant), and

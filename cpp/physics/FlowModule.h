@@ -163,6 +163,8 @@ private:
   std::unique_ptr<PeriodicConstraint> periodic_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
+  /// -A g of the Dirichlet values, from the last matrix assembly (reused with the factorisation)
+  std::unique_ptr<dolfinx::la::Vector<T>> lifting_;
   std::unique_ptr<LinearSolver> solver_;
   /// Inputs of the factorised matrix; a step compares them with the current ones.
   bool factorised_ = false;

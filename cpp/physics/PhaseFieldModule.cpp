@@ -415,8 +415,9 @@ StepTimings PhaseFieldModule::step(double dt)
     if (!A_) // the sparsity (and MUMPS' analysis) is kept until the next mesh
       A_ = std::make_unique<la::petsc::Matrix>(periodic_->create_matrix(*a_));
     periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
+    lifting_ = std::make_unique<la::Vector<T>>(periodic_->lifting(a_, bcs_)); // -A g, (phi = -1)
   }
-  periodic_->assemble_vector(*b_, *L_, a_, bcs_);
+  periodic_->assemble_vector(*b_, *L_, *lifting_, bcs_);
   t.assemble = seconds_since(t0);
   if (rebuild)
   {

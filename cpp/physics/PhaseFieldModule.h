@@ -131,6 +131,8 @@ private:
   std::unique_ptr<PeriodicConstraint> periodic_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
+  /// -A g of the Dirichlet values through the matrix last assembled (reused with it)
+  std::unique_ptr<dolfinx::la::Vector<T>> lifting_;
   std::unique_ptr<LinearSolver> solver_; ///< created at the first factorisation on a mesh
   bool matrix_current_ = false; ///< stabilised scheme: matrix assembled and factorised
   ConstantMap constants_;
