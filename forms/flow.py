@@ -65,8 +65,15 @@ J = -(rho1 - rho0) / 2 * mobility * (1 - degenerate + degenerate * W(phi)) * gra
 dxq = dx(metadata={"quadrature_degree": QDEG})
 
 
-def momentum_a(v, p, w, q):
-    """Bilinear form of one step of (2.47)/(2.56)/(2.57) for trial (v, p), test (w, q)."""
+def momentum_a(v, p, w, q, inertia=True):
+    """Bilinear form of one step of (2.47)/(2.56)/(2.57) for trial (v, p), test (w, q);
+    without `inertia` the Stokes system (Re = 0) with none of the Re terms."""
+    viscous = 2 * eta * inner(D(v), D(w))  # -div(2 eta(phi) D(v)), (2.49)/(2.56) (written
+    #   eta D there; with the factor 2, eta = 1 and div v = 0 give the Lap v of 5.3 (1))
+    pressure = (-p * div(w)                                           # grad p, (2.47)/(2.56)
+                - q * div(v)) * dx                                    # div v = 0, (2.57)
+    if not inertia:
+        return viscous * dxq + pressure
     return (Re * rho / dt * inner(v, w)                               # Re rho d_t v, 5.3 (1), (3.43)
             + convection * Re * inner(grad(v) * (rho * v0 + J), w)    # (v^n.grad)v, 5.3 (1); J, 2.8
             # Temam's term: zero for div v^n = 0 (consistent). For constant rho and J = 0 it
@@ -75,27 +82,28 @@ def momentum_a(v, p, w, q):
             # variable rho an exact discrete law would need rho(phi^{n+1}), unknown in step 1
             # of the split.)
             + convection * Re * rho / 2 * div(v0) * inner(v, w)
-            # -div(2 eta(phi) D(v)), (2.49)/(2.56) (written eta D there; with the factor 2,
-            # eta = 1 and div v = 0 give the Lap v of 5.3 (1))
-            + 2 * eta * inner(D(v), D(w))) * dxq \
-        + (-p * div(w)                                                # grad p, (2.47)/(2.56)
-           - q * div(v)) * dx                                         # div v = 0, (2.57)
+            + viscous) * dxq + pressure
 
 
 # Body forces F of (2.47): rho_i g per phase and a constant force; the capillary force
 # dE_S/dphi grad phi of model H (2.8, 5.3 (1)) with mu the CH chemical potential and
 # `capillary` its prefactor (3 sigma / (2 sqrt2) in 2.8, 1/Ca with the scaling of 3.4);
 # f_membrane carries the Helfrich/active forces (3.59), (5.7) once coupled.
-def momentum_L(w):
-    """Right-hand side of one step for the velocity test function w."""
-    return (Re * rho / dt * inner(v0, w)                              # v^n of d_t v, 5.3 (1)
-            + inner(rho * gravity + force, w)                         # F, (2.47)
-            + capillary * mu * inner(grad(phi), w)                    # dE/dphi grad phi, 2.8
-            + inner(f_membrane, w)) * dxq                             # (3.59), (5.7)
+def momentum_L(w, inertia=True):
+    """Right-hand side of one step for the velocity test function w (Stokes: no v^n)."""
+    forces = (inner(rho * gravity + force, w)                         # F, (2.47)
+              + capillary * mu * inner(grad(phi), w)                  # dE/dphi grad phi, 2.8
+              + inner(f_membrane, w))                                 # (3.59), (5.7)
+    if not inertia:
+        return forces * dxq
+    return (Re * rho / dt * inner(v0, w) + forces) * dxq              # v^n of d_t v, 5.3 (1)
 
 
 a = momentum_a(v, p, w, q)
 L = momentum_L(w)
+# Re = 0: the same system without the inertial terms, which the module then skips
+a_stokes = momentum_a(v, p, w, q, inertia=False)
+L_stokes = momentum_L(w, inertia=False)
 
 # Observables of the current velocity (v0 after a step)
 kinetic_energy = rho / 2 * inner(v0, v0) * dxq                           # (2.54)
@@ -107,7 +115,7 @@ phase_velocity_1 = phase_velocity[1]
 pressure_integral = p_h * dx
 domain_volume = one * dx
 
-forms = [a, L, kinetic_energy, divergence_sq, phase_weight, phase_velocity_0,
+forms = [a, L, a_stokes, L_stokes, kinetic_energy, divergence_sq, phase_weight, phase_velocity_0,
          phase_velocity_1, pressure_integral, domain_volume]
 if DIM == 3:
     phase_velocity_2 = phase_velocity[2]

@@ -41,11 +41,14 @@ delta_P = (inner(g, g) * Identity(DIM) - outer(g, g)) / (2 * g_norm)   # delta_p
 C_FLOOR = 0.05
 stretch_penalty = (conc - 1) / max_value(conc, C_FLOOR)
 
-a = momentum_a(v, p, w, q) \
-    + (lam * inner(delta_P, grad(w))                                   # div(delta P lambda), (3.67)
-       + inner(delta_P, grad(v)) * r                                   # delta P : grad v, (3.68)
-       - xi * eps**2 * phi_cells**2 * inner(grad(lam), grad(r))) * dxq  # xi eps^2 div(phi^2 grad lambda)
-L = momentum_L(w) + (xi2 * stretch_penalty + area_source) * delta * r * dxq   # (3.71), (3.69)
+membrane_a = (lam * inner(delta_P, grad(w))                          # div(delta P lambda), (3.67)
+              + inner(delta_P, grad(v)) * r                          # delta P : grad v, (3.68)
+              - xi * eps**2 * phi_cells**2 * inner(grad(lam), grad(r))) * dxq  # xi eps^2 div(phi^2 grad lambda)
+membrane_L = (xi2 * stretch_penalty + area_source) * delta * r * dxq  # (3.71), (3.69)
+a = momentum_a(v, p, w, q) + membrane_a
+L = momentum_L(w) + membrane_L
+a_stokes = momentum_a(v, p, w, q, inertia=False) + membrane_a   # Re = 0
+L_stokes = momentum_L(w, inertia=False) + membrane_L
 
 # Observables
 membrane_delta = delta * dxq                                            # int delta_phi ~ |Gamma|
@@ -53,7 +56,7 @@ energy_ch = (eps / 2 * inner(grad(phi_cells), grad(phi_cells))         # E_CH (2
              + W(phi_cells) / eps) * dxq                                # area of (3.11)
 lambda_dissipation = xi * eps**2 * phi_cells**2 * inner(grad(lam_h), grad(lam_h)) * dxq  # (3.76)
 lambda_membrane = lam_h * delta * dxq                                  # int lambda delta_phi
-forms = [a, L, kinetic_energy, divergence_sq, phase_weight, phase_velocity_0,
+forms = [a, L, a_stokes, L_stokes, kinetic_energy, divergence_sq, phase_weight, phase_velocity_0,
          phase_velocity_1, pressure_integral, domain_volume, membrane_delta, energy_ch,
          lambda_dissipation, lambda_membrane]
 if DIM == 3:

@@ -256,8 +256,10 @@ void FlowModule::bind_forms()
     coeffs["conc"] = concentration_;
     coeffs["lam_h"] = multiplier_;
   }
-  a_ = compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_);
-  L_ = compat::create_form(*forms_.L, {W_}, coeffs, constants_);
+  // Stokes (Re = 0) skips the inertial terms instead of multiplying them by 0.
+  const bool stokes = params_.Re == 0 && forms_.a_stokes;
+  a_ = compat::create_form(*(stokes ? forms_.a_stokes : forms_.a), {W_, W_}, coeffs, constants_);
+  L_ = compat::create_form(*(stokes ? forms_.L_stokes : forms_.L), {W_}, coeffs, constants_);
   auto functional = [&](ufcx_form* f) -> std::shared_ptr<Form>
   { return f ? compat::create_form(*f, {}, coeffs, constants_, mesh_) : nullptr; };
   kinetic_ = functional(forms_.kinetic_energy);

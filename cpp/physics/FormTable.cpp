@@ -118,6 +118,8 @@ FlowForms flow_forms(int dim, bool inextensible)
 #define CELLPHASE_FLOW(F, D)                                                                    \
   f.a = form_##F##_##D##_a;                                                                     \
   f.L = form_##F##_##D##_L;                                                                     \
+  f.a_stokes = form_##F##_##D##_a_stokes;                                                       \
+  f.L_stokes = form_##F##_##D##_L_stokes;                                                       \
   f.kinetic_energy = form_##F##_##D##_kinetic_energy;                                           \
   f.divergence_sq = form_##F##_##D##_divergence_sq;                                             \
   f.phase_weight = form_##F##_##D##_phase_weight;                                               \

@@ -55,6 +55,8 @@ struct FlowForms
 {
   ufcx_form* a = nullptr; ///< Taylor-Hood system of one semi-implicit step
   ufcx_form* L = nullptr;
+  ufcx_form* a_stokes = nullptr; ///< the same for Re = 0, without the inertial terms
+  ufcx_form* L_stokes = nullptr;
   ufcx_form* kinetic_energy = nullptr;
   ufcx_form* divergence_sq = nullptr;
   ufcx_form* phase_weight = nullptr;
