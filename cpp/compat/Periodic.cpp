@@ -195,12 +195,11 @@ void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
   fem::set_bc<T>(b.mutable_array(), bcs);
 }
 
-la::Vector<T> PeriodicConstraint::lifting(std::shared_ptr<const Form> a, const BCs& bcs) const
+void PeriodicConstraint::lifting(la::Vector<T>& l, std::shared_ptr<const Form> a,
+                                 const BCs& bcs) const
 {
-  la::Vector<T> l = create_vector();
   l.set(0.0);
   add_lifting(l, a, bcs);
-  return l;
 }
 
 void PeriodicConstraint::assemble_unscattered(la::Vector<T>& b, const Form& L) const

@@ -48,9 +48,9 @@ public:
   /// a and the Dirichlet values do not change (a reused factorisation).
   void assemble_vector(dolfinx::la::Vector<T>& b, const Form& L,
                        const dolfinx::la::Vector<T>& lifting, const BCs& bcs) const;
-  /// The lifting -A g of the Dirichlet values g of bcs through a, before the ghost
-  /// accumulation (for the overload above).
-  dolfinx::la::Vector<T> lifting(std::shared_ptr<const Form> a, const BCs& bcs) const;
+  /// l <- the lifting -A g of the Dirichlet values g of bcs through a, before the ghost
+  /// accumulation (for the overload above); l from create_vector.
+  void lifting(dolfinx::la::Vector<T>& l, std::shared_ptr<const Form> a, const BCs& bcs) const;
 
   /// After a solve into x (from create_vector): slave values from their masters, then
   /// copied into u (a function on V).

@@ -140,6 +140,7 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
   A_ = std::make_unique<la::petsc::Matrix>(periodic_->create_matrix(*a_));
   b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   x_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+  lifting_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   // Without the transport terms (v^n.grad) v and (J.grad) v the matrix of forms/flow.py
   // (and of flow_inextensible.py) is symmetric: L D L^T instead of LU.
   const bool symmetric = params_.Re == 0 || !params_.convection;
@@ -341,7 +342,7 @@ FlowTimings FlowModule::step(double dt)
   {
     periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
     // The wall values do not change on a mesh, so neither does -A g while A stays.
-    lifting_ = std::make_unique<la::Vector<T>>(periodic_->lifting(a_, bcs_));
+    periodic_->lifting(*lifting_, a_, bcs_);
   }
   periodic_->assemble_vector(*b_, *L_, *lifting_, bcs_);
   t.assemble = seconds_since(t0);

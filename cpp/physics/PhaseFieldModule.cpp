@@ -142,6 +142,7 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   // From the constraint: with periodic axes their ghosts include remote masters.
   b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   x_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+  lifting_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
   for (auto& load : loads_)
   {
     load.x = std::make_unique<la::Vector<T>>(periodic_->create_vector());
@@ -415,7 +416,7 @@ StepTimings PhaseFieldModule::step(double dt)
     if (!A_) // the sparsity (and MUMPS' analysis) is kept until the next mesh
       A_ = std::make_unique<la::petsc::Matrix>(periodic_->create_matrix(*a_));
     periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
-    lifting_ = std::make_unique<la::Vector<T>>(periodic_->lifting(a_, bcs_)); // -A g, (phi = -1)
+    periodic_->lifting(*lifting_, a_, bcs_); // -A g, (phi = -1)
   }
   periodic_->assemble_vector(*b_, *L_, *lifting_, bcs_);
   t.assemble = seconds_since(t0);
