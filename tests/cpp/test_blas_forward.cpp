@@ -1,5 +1,5 @@
-// cpp/BlasForward.cpp: dgemm/dtrsm with one column give what the definitions of BLAS give
-// (checked against plain loops), other shapes still reach the BLAS library, and the
+// cpp/BlasForward.cpp: dgemm/dtrsm with a few columns give what the definitions of BLAS give
+// (checked against plain loops), wider ones still reach the BLAS library, and the
 // executable exports the definitions so that MUMPS binds to them.
 #include <dlfcn.h>
 #include <gtest/gtest.h>
@@ -39,85 +39,91 @@ double op(const std::vector<double>& x, int ld, bool transposed, int i, int j)
 constexpr double kTol = 1e-13;
 } // namespace
 
-TEST(BlasForward, GemmWithOneColumnMatchesTheDefinition)
+// C = alpha op(A) op(B) + beta C from the definition, for every shape and option MUMPS uses
+// and more: n = 1..4 columns run in cpp/BlasForward.cpp, n = 5 in the BLAS library.
+TEST(BlasForward, GemmMatchesTheDefinition)
 {
   const int m = 37, k = 23, pad = 5;
-  for (const bool ta : {false, true})
-    for (const bool tb : {false, true})
-      for (const double beta : {0.0, 0.5})
-      {
-        const int lda = (ta ? k : m) + pad, ldb = (tb ? 1 : k) + pad, ldc = m + pad;
-        const int n = 1;
-        const auto a = random_values(std::size_t(lda) * (ta ? m : k), 1);
-        const auto b = random_values(std::size_t(ldb) * (tb ? k : 1), 2);
-        auto c = random_values(std::size_t(ldc), 3);
-        if (beta == 0) // BLAS does not read C then: NaN must not propagate
-          for (auto& x : c)
-            x = std::numeric_limits<double>::quiet_NaN();
-        std::vector<double> expected(m);
-        const double alpha = -1.5;
-        for (int i = 0; i < m; ++i)
+  for (int n = 1; n <= 5; ++n)
+    for (const bool ta : {false, true})
+      for (const bool tb : {false, true})
+        for (const double beta : {0.0, 0.5, 1.0})
         {
-          double s = 0;
-          for (int l = 0; l < k; ++l)
-            s += op(a, lda, ta, i, l) * op(b, ldb, tb, l, 0);
-          expected[i] = alpha * s + (beta == 0 ? 0.0 : beta * c[i]);
+          const int lda = (ta ? k : m) + pad, ldb = (tb ? n : k) + pad, ldc = m + pad;
+          const auto a = random_values(std::size_t(lda) * (ta ? m : k), 1);
+          const auto b = random_values(std::size_t(ldb) * (tb ? k : n), 2);
+          auto c = random_values(std::size_t(ldc) * n, 3);
+          if (beta == 0) // BLAS does not read C then: NaN must not propagate
+            for (auto& x : c)
+              x = std::numeric_limits<double>::quiet_NaN();
+          std::vector<double> expected(std::size_t(m) * n);
+          const double alpha = -1.5;
+          for (int j = 0; j < n; ++j)
+            for (int i = 0; i < m; ++i)
+            {
+              double s = 0;
+              for (int l = 0; l < k; ++l)
+                s += op(a, lda, ta, i, l) * op(b, ldb, tb, l, j);
+              expected[i + j * m] = alpha * s + (beta == 0 ? 0.0 : beta * c[i + j * ldc]);
+            }
+          dgemm_(ta ? "T" : "N", tb ? "T" : "N", &m, &n, &k, &alpha, a.data(), &lda, b.data(),
+                 &ldb, &beta, c.data(), &ldc);
+          for (int j = 0; j < n; ++j)
+            for (int i = 0; i < m; ++i)
+              EXPECT_NEAR(c[i + j * ldc], expected[i + j * m], kTol)
+                  << "n " << n << " transa " << ta << " transb " << tb << " beta " << beta
+                  << " entry " << i << "," << j;
         }
-        dgemm_(ta ? "T" : "N", tb ? "T" : "N", &m, &n, &k, &alpha, a.data(), &lda, b.data(),
-               &ldb, &beta, c.data(), &ldc);
-        for (int i = 0; i < m; ++i)
-          EXPECT_NEAR(c[i], expected[i], kTol) << "transa " << ta << " transb " << tb
-                                                << " beta " << beta << " row " << i;
-      }
 }
 
-TEST(BlasForward, GemmWithSeveralColumnsStillWorks)
+TEST(BlasForward, GemmWithEmptyProductOnlyScalesC)
 {
-  const int m = 9, n = 4, k = 6;
-  const auto a = random_values(m * k, 4), b = random_values(k * n, 5);
-  std::vector<double> c(m * n, 0.0);
-  const double one = 1, zero = 0;
-  dgemm_("N", "N", &m, &n, &k, &one, a.data(), &m, b.data(), &k, &zero, c.data(), &m);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < n; ++j)
-    {
-      double s = 0;
-      for (int l = 0; l < k; ++l)
-        s += a[i + l * m] * b[l + j * k];
-      EXPECT_NEAR(c[i + j * m], s, kTol);
-    }
+  const int m = 4, n = 2, k = 0, ld = 4;
+  std::vector<double> c(m * n, 2.0);
+  const double alpha = 1, beta = 0.5, unused = 0;
+  dgemm_("N", "N", &m, &n, &k, &alpha, &unused, &ld, &unused, &ld, &beta, c.data(), &ld);
+  for (double x : c)
+    EXPECT_EQ(x, 1.0);
 }
 
-TEST(BlasForward, TriangularSolveWithOneColumnMatchesTheDefinition)
+// op(T) X = alpha B solved in place, for n = 1..4 (here) and 5 (the BLAS library).
+TEST(BlasForward, TriangularSolveMatchesTheDefinition)
 {
-  const int m = 31, lda = m + 3, n = 1, ldb = m;
+  const int m = 31, lda = m + 3, ldb = m + 2;
   auto a = random_values(std::size_t(lda) * m, 6);
   for (int i = 0; i < m; ++i)
     a[i + i * lda] += 4; // well conditioned
-  const double one = 1;
-  for (const bool lower : {false, true})
-    for (const bool ta : {false, true})
-      for (const bool unit : {false, true})
-      {
-        const auto x = random_values(m, 7);
-        // b = op(T) x with T the triangle of a (unit: ones on the diagonal).
-        auto t = [&](int i, int j)
-        {
-          const int r = ta ? j : i, c = ta ? i : j; // entry (i, j) of op(T) is T(r, c)
-          if (r == c)
-            return unit ? 1.0 : a[r + c * lda];
-          return (lower ? r > c : r < c) ? a[r + c * lda] : 0.0;
-        };
-        std::vector<double> b(m, 0.0);
-        for (int i = 0; i < m; ++i)
-          for (int j = 0; j < m; ++j)
-            b[i] += t(i, j) * x[j];
-        dtrsm_("L", lower ? "L" : "U", ta ? "T" : "N", unit ? "U" : "N", &m, &n, &one, a.data(),
-               &lda, b.data(), &ldb);
-        for (int i = 0; i < m; ++i)
-          EXPECT_NEAR(b[i], x[i], 1e-12) << "lower " << lower << " trans " << ta << " unit "
-                                         << unit << " row " << i;
-      }
+  for (int n = 1; n <= 5; ++n)
+    for (const double alpha : {1.0, -2.0})
+      for (const bool lower : {false, true})
+        for (const bool ta : {false, true})
+          for (const bool unit : {false, true})
+          {
+            const auto x = random_values(std::size_t(ldb) * n, 7);
+            // b = op(T) x / alpha with T the triangle of a (unit: ones on the diagonal).
+            auto t = [&](int i, int j)
+            {
+              const int r = ta ? j : i, c = ta ? i : j; // entry (i, j) of op(T) is T(r, c)
+              if (r == c)
+                return unit ? 1.0 : a[r + c * lda];
+              return (lower ? r > c : r < c) ? a[r + c * lda] : 0.0;
+            };
+            std::vector<double> b(std::size_t(ldb) * n, 0.0);
+            for (int col = 0; col < n; ++col)
+              for (int i = 0; i < m; ++i)
+              {
+                for (int j = 0; j < m; ++j)
+                  b[i + col * ldb] += t(i, j) * x[j + col * ldb];
+                b[i + col * ldb] /= alpha;
+              }
+            dtrsm_("L", lower ? "L" : "U", ta ? "T" : "N", unit ? "U" : "N", &m, &n, &alpha,
+                   a.data(), &lda, b.data(), &ldb);
+            for (int col = 0; col < n; ++col)
+              for (int i = 0; i < m; ++i)
+                EXPECT_NEAR(b[i + col * ldb], x[i + col * ldb], 1e-12)
+                    << "n " << n << " alpha " << alpha << " lower " << lower << " trans " << ta
+                    << " unit " << unit << " entry " << i << "," << col;
+          }
 }
 
 TEST(BlasForward, ExecutableExportsTheDefinitionsToSharedLibraries)
