@@ -18,10 +18,11 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix,
     // Unsymmetric LU (the Taylor phase field, Navier-Stokes): MUMPS's automatic choice
     // recomputes an iterative row/column scaling at every factorisation (about 20 % of a
     // refactorisation here) and orders with PORD, whose analysis after each remesh costs
-    // as much as three factorisations and runs on one rank. QAMD analyses in a fraction
-    // of that and its tree splits better over ranks; the unscaled finite element
-    // matrices factorise to the same solution (benchmarks/vesicle_benchmark.py).
-    all["mat_mumps_icntl_7"] = "6";
+    // as much as three factorisations and runs on one rank. AMF analyses in a fraction of
+    // that, fills a few per cent less than AMD/QAMD, and its tree splits better over two
+    // ranks (vesicle: refactorisations 1.6x faster on 2 ranks, QAMD 1.45x); the unscaled
+    // finite element matrices factorise to the same solution (benchmarks/vesicle_benchmark.py).
+    all["mat_mumps_icntl_7"] = "2";
     all["mat_mumps_icntl_8"] = "0";
   }
   for (const auto& [k, v] : options)
