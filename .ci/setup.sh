@@ -8,6 +8,7 @@ packages=(
   cmake g++ make pkg-config
   libdolfinx-dev python3-ffcx          # DOLFINx 0.5 (PETSc with MUMPS, Open MPI, HDF5), FFCx
   libdolfinx-mpc-dev                   # dolfinx_mpc 0.5: periodic boundary conditions
+  libmumps-dev                         # MUMPS (PETSc's), called directly for the direct solves
   libyaml-cpp-dev libmuparser-dev      # scene files, signed-distance expressions
   libpugixml-dev                       # the XDMF index of the field output
   libgtest-dev                         # C++ tests

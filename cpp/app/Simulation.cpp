@@ -5,6 +5,7 @@
 #include "io/Progress.h"
 #include "mesh/FieldTransfer.h"
 #include "physics/UnionPhaseField.h"
+#include "scene/Check.h"
 #include "scene/Shapes.h"
 #include "util/Clock.h"
 #include "util/Mpi.h"
@@ -471,7 +472,7 @@ void Simulation::run()
     std::filesystem::create_directories(scene_.output.directory);
   MPI_Barrier(comm_);
   stop_signal::install();
-  last_step_ = int(std::ceil(scene_.numerics.end_time / scene_.numerics.dt - 1e-9));
+  last_step_ = int(scene::number_of_steps(scene_));
   LoopState at = restart_ ? restore() : initialise();
   open_output(at);
   keep_good_state(at);

@@ -128,8 +128,10 @@ void flow_report(const Scene& s, Report& r)
 
 long number_of_steps(const Scene& s)
 {
-  // 1e-9 relative slack: end_time = 1, dt = 1e-3 is 1000 steps, not 1001.
-  return static_cast<long>(std::ceil(s.numerics.end_time / s.numerics.dt * (1 - 1e-9)));
+  // A remainder below 1e-6 dt is round-off of the scene's numbers (end_time = 1, dt = 1e-3
+  // is 1000 steps; end_time = 0.2, dt = 0.00114285714 is 175): the last step ends at
+  // end_time instead of adding a step of 1e-10, whose system is singular to working precision.
+  return static_cast<long>(std::ceil(s.numerics.end_time / s.numerics.dt - 1e-6));
 }
 
 long number_of_outputs(const Scene& s)

@@ -68,23 +68,6 @@ WallSpec read_wall(const Section& walls, const std::string& side, int dim)
   return w;
 }
 
-/// PETSc options pass through as text (same shape checks as numerics.petsc).
-void read_flow_petsc(const Section& p, std::map<std::string, std::string>& out)
-{
-  p.allow_only(p.keys());
-  for (const std::string& key : p.keys())
-  {
-    const Value v = p.value(key);
-    if (key.empty() || key[0] == '-')
-      v.fail("write PETSc option names without the leading '-' (e.g. ksp_type)");
-    if (v.node.IsNull())
-      out[key] = "";
-    else if (v.node.IsScalar())
-      out[key] = v.node.Scalar();
-    else
-      v.fail("found " + v.found() + ", expected a single value (text, number or boolean)");
-  }
-}
 /// flow.inextensibility (3.67)-(3.72); `enabled: false` keeps the section but switches it
 /// off (e.g. --set flow.inextensibility.enabled=false to compare).
 std::optional<Inextensibility> read_inextensibility(const Section& f, Model m)
@@ -163,7 +146,7 @@ void read_flow(const Section& top, Scene& s)
     if (walls.has(sides[i]))
       flow.walls[i] = read_wall(walls, sides[i], dim);
   }
-  read_flow_petsc(f.section("petsc"), flow.petsc);
+  read_petsc_options(f.section("petsc"), flow.petsc);
   flow.inextensibility = read_inextensibility(f, m);
   s.flow = flow;
 }

@@ -26,24 +26,6 @@ void read_limits(const Section& l, Model model, Limits& limits)
   else if (model != Model::allen_cahn) // every other model conserves the volume
     limits.volume_drift = 0.01;
 }
-
-/// PETSc options pass through as text; only their shape is checked here.
-void read_petsc(const Section& p, std::map<std::string, std::string>& out)
-{
-  p.allow_only(p.keys()); // any names, but no duplicates or non-scalar keys
-  for (const std::string& key : p.keys())
-  {
-    const Value v = p.value(key);
-    if (key.empty() || key[0] == '-')
-      v.fail("write PETSc option names without the leading '-' (e.g. ksp_type)");
-    if (v.node.IsNull())
-      out[key] = ""; // a flag option such as ksp_monitor
-    else if (v.node.IsScalar())
-      out[key] = v.node.Scalar();
-    else
-      v.fail("found " + v.found() + ", expected a single value (text, number or boolean)");
-  }
-}
 } // namespace
 
 void read_numerics(const Section& top, Scene& s)
@@ -76,7 +58,7 @@ void read_numerics(const Section& top, Scene& s)
                             "use taylor");
   read_mesh(n.section("mesh"), num.mesh);
   read_limits(n.section("limits"), s.phase_field.model, num.limits);
-  read_petsc(n.section("petsc"), num.petsc);
+  read_petsc_options(n.section("petsc"), num.petsc);
 }
 
 } // namespace cellphase::scene

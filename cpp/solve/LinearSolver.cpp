@@ -1,15 +1,80 @@
 #include "solve/LinearSolver.h"
 #include "util/Clock.h"
 #include <algorithm>
+#include <optional>
+#include <type_traits>
 
 namespace cellphase
 {
+namespace
+{
+/// Integer or number of a MUMPS control, or nullopt if the text is not one.
+template <typename V>
+std::optional<V> parse(const std::string& text)
+{
+  try
+  {
+    std::size_t used = 0;
+    const V v = std::is_integral_v<V> ? V(std::stoi(text, &used)) : V(std::stod(text, &used));
+    if (used == text.size())
+      return v;
+  }
+  catch (const std::exception&)
+  {
+  }
+  return std::nullopt;
+}
+
+/// The MUMPS controls of options that ask for a MUMPS factorisation and nothing else
+/// (ksp_type preonly, pc_type lu or cholesky, mat_mumps_icntl_<i>, mat_mumps_cntl_<i>);
+/// nullopt for any other option, which a PETSc KSP then honours.
+std::optional<MumpsSolver::Controls> mumps_controls(const std::map<std::string, std::string>& all)
+{
+  MumpsSolver::Controls c;
+  for (const auto& [key, value] : all)
+  {
+    if ((key == "ksp_type" && value == "preonly")
+        || (key == "pc_type" && (value == "lu" || value == "cholesky"))
+        || (key == "pc_factor_mat_solver_type" && value == "mumps"))
+      continue;
+    for (const bool integer : {true, false})
+    {
+      const std::string stem = integer ? "mat_mumps_icntl_" : "mat_mumps_cntl_";
+      if (key.rfind(stem, 0) != 0)
+        continue;
+      const auto index = parse<int>(key.substr(stem.size()));
+      if (!index || *index < 1 || *index > (integer ? 60 : 15))
+        return std::nullopt;
+      if (integer)
+      {
+        const auto v = parse<int>(value);
+        if (!v)
+          return std::nullopt;
+        c.icntl[*index] = *v;
+      }
+      else
+      {
+        const auto v = parse<double>(value);
+        if (!v)
+          return std::nullopt;
+        c.cntl[*index] = *v;
+      }
+      goto next_option;
+    }
+    return std::nullopt;
+  next_option:;
+  }
+  if (!all.count("ksp_type") || !all.count("pc_type") || !all.count("pc_factor_mat_solver_type"))
+    return std::nullopt;
+  return c;
+}
+} // namespace
+
 LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix,
                            const std::map<std::string, std::string>& options, Symmetry symmetry)
     : prefix_(prefix), symmetry_(symmetry)
 {
-  // Defaults first, the scene's options on top: both go to PETSc's options database
-  // under this solver's prefix so that several solvers do not share settings.
+  // Defaults first, the scene's options on top.
   std::map<std::string, std::string> all{{"ksp_type", "preonly"},
                                          {"pc_type", symmetry == Symmetry::general ? "lu" : "cholesky"},
                                          {"pc_factor_mat_solver_type", "mumps"}};
@@ -27,7 +92,22 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix,
   }
   for (const auto& [k, v] : options)
     all[k] = v;
-  for (const auto& [k, v] : all)
+  options_ = all;
+  if (const auto controls = mumps_controls(all))
+  {
+    // MUMPS' SYM: 0 LU, 1 positive definite (no pivoting), 2 symmetric indefinite.
+    const int sym = all.at("pc_type") == "lu" ? 0 : symmetry == Symmetry::positive_definite ? 1 : 2;
+    mumps_ = std::make_unique<MumpsSolver>(comm, sym, *controls);
+  }
+  else
+    create_ksp(comm);
+}
+
+void LinearSolver::create_ksp(MPI_Comm comm)
+{
+  // Under this solver's prefix in PETSc's options database, so that several solvers do
+  // not share settings.
+  for (const auto& [k, v] : options_)
     PetscOptionsSetValue(nullptr, ("-" + prefix_ + k).c_str(), v.empty() ? nullptr : v.c_str());
   KSPCreate(comm, &ksp_);
   KSPSetOptionsPrefix(ksp_, prefix_.c_str());
@@ -39,6 +119,24 @@ LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
 double LinearSolver::set_operator(Mat A)
 {
   auto t0 = Clock::now();
+  if (mumps_ && MumpsSolver::reads(A))
+  {
+    try
+    {
+      mumps_->factorise(A);
+    }
+    catch (const MumpsError& e)
+    {
+      throw SolverError("the linear system '" + prefix_.substr(0, prefix_.size() - 1)
+                        + "': " + e.what());
+    }
+    return seconds_since(t0);
+  }
+  if (!ksp_) // a matrix type MUMPS is not given directly: PETSc converts it
+  {
+    mumps_.reset();
+    create_ksp(PetscObjectComm(reinterpret_cast<PetscObject>(A)));
+  }
   if (symmetry_ != Symmetry::general)
   {
     MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE);
@@ -54,6 +152,8 @@ double LinearSolver::set_operator(Mat A)
 void LinearSolver::solve(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>& x,
                          const std::string& what)
 {
+  if (mumps_)
+    return solve_directly({&b}, {&x}, what);
   namespace lp = dolfinx::la::petsc;
   lp::Vector xv(lp::create_vector_wrap(x), false);
   lp::Vector bv(lp::create_vector_wrap(b), false);
@@ -70,6 +170,8 @@ void LinearSolver::solve(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>
 void LinearSolver::solve(const std::vector<const dolfinx::la::Vector<T>*>& bs,
                          const std::vector<dolfinx::la::Vector<T>*>& xs, const std::string& what)
 {
+  if (mumps_)
+    return solve_directly(bs, xs, what);
   if (bs.size() == 1)
     return solve(*bs[0], *xs[0], what);
   // Owned entries of every right-hand side as the columns of a dense matrix.
@@ -103,6 +205,31 @@ void LinearSolver::solve(const std::vector<const dolfinx::la::Vector<T>*>& bs,
     throw SolverError("linear solver of " + what + " did not converge (KSP reason "
                       + std::to_string(int(reason)) + ", PETSc error " + std::to_string(int(ierr))
                       + ")");
+  for (auto* x : xs)
+    x->scatter_fwd();
+}
+
+void LinearSolver::solve_directly(const std::vector<const dolfinx::la::Vector<T>*>& bs,
+                                  const std::vector<dolfinx::la::Vector<T>*>& xs,
+                                  const std::string& what)
+{
+  // MUMPS solves in place: each x takes the owned entries of its b first.
+  std::vector<double*> columns;
+  for (std::size_t j = 0; j < bs.size(); ++j)
+  {
+    const auto& map = *bs[j]->map();
+    const std::size_t n = std::size_t(map.size_local()) * bs[j]->bs();
+    std::copy_n(bs[j]->array().begin(), n, xs[j]->mutable_array().begin());
+    columns.push_back(xs[j]->mutable_array().data());
+  }
+  try
+  {
+    mumps_->solve(columns);
+  }
+  catch (const MumpsError& e)
+  {
+    throw SolverError("linear solver of " + what + " failed: " + e.what());
+  }
   for (auto* x : xs)
     x->scatter_fwd();
 }

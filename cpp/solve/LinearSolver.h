@@ -1,9 +1,12 @@
-// A PETSc KSP with its own options prefix. Direct MUMPS LU by default (LDL^T for a
-// symmetric operator); the scene's numerics.petsc options override. Factorisations are
-// reused until the operator changes.
+// A linear solver with its own options prefix. Direct MUMPS LU by default (LDL^T for a
+// symmetric operator); the scene's numerics.petsc options override. Options that ask for
+// MUMPS and nothing but its controls go to MUMPS directly (MumpsSolver); any other
+// options build a PETSc KSP. Factorisations are reused until the operator changes.
 #pragma once
 #include "compat/Dolfinx.h"
+#include "solve/MumpsSolver.h"
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,7 +49,13 @@ public:
              const std::vector<dolfinx::la::Vector<T>*>& xs, const std::string& what);
 
 private:
-  KSP ksp_ = nullptr;
+  void create_ksp(MPI_Comm comm);
+  void solve_directly(const std::vector<const dolfinx::la::Vector<T>*>& bs,
+                      const std::vector<dolfinx::la::Vector<T>*>& xs, const std::string& what);
+
+  std::map<std::string, std::string> options_; ///< defaults with the scene's on top
+  KSP ksp_ = nullptr;                          ///< any solver PETSc offers
+  std::unique_ptr<MumpsSolver> mumps_;         ///< or MUMPS, called directly
   std::string prefix_;
   Symmetry symmetry_;
 };

@@ -561,6 +561,13 @@ TEST(SceneCheck, StepsRoundUp)
   s.numerics.dt = 0.03;
   s.numerics.end_time = 0.1;
   EXPECT_EQ(number_of_steps(s), 4);
+  // dt written with 9 digits: 0.2 / 0.00114285714 = 175.0000004; the remainder of 5e-10
+  // joins the last step instead of being a singular step of its own.
+  s.numerics.dt = 0.00114285714;
+  s.numerics.end_time = 0.2;
+  EXPECT_EQ(number_of_steps(s), 175);
+  s.numerics.dt = 0.2 / 175 * (1 - 1e-5); // a real remainder of 1.75e-3 dt: one more step
+  EXPECT_EQ(number_of_steps(s), 176);
   s.output.every = 0;
   EXPECT_EQ(number_of_outputs(s), 0);
 }
@@ -646,6 +653,13 @@ TEST(SceneErrors, WrongTypes)
                "cells[0]: found \"circle\", expected a mapping of keys");
   EXPECT_ERROR(minimal_with("end_time: 0.1", "end_time: 0.1\n  petsc: {ksp_type: [cg]}"),
                "numerics.petsc.ksp_type: found a list of 1 item, expected a single value");
+  // MUMPS controls are read by cellphase itself (solve/MumpsSolver): their shape is checked.
+  EXPECT_ERROR(minimal_with("end_time: 0.1", "end_time: 0.1\n  petsc: {mat_mumps_icntl_7: amf}"),
+               "numerics.petsc.mat_mumps_icntl_7: found \"amf\", expected an integer");
+  EXPECT_ERROR(minimal_with("end_time: 0.1", "end_time: 0.1\n  petsc: {mat_mumps_cntl_1: x}"),
+               "numerics.petsc.mat_mumps_cntl_1: found \"x\", expected a number");
+  EXPECT_ERROR(minimal_with("end_time: 0.1", "end_time: 0.1\n  petsc: {mat_mumps_icntl_61: 1}"),
+               "numerics.petsc.mat_mumps_icntl_61: MUMPS has ICNTL(1) to (60)");
 }
 
 TEST(SceneErrors, NonFiniteValues)
