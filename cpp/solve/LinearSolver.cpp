@@ -25,47 +25,48 @@ std::optional<V> parse(const std::string& text)
   return std::nullopt;
 }
 
+/// Adds key = value to c if the key is a MUMPS control (mat_mumps_icntl_<1..60> with an
+/// integer, mat_mumps_cntl_<1..15> with a number); false otherwise.
+bool add_mumps_control(const std::string& key, const std::string& value,
+                       MumpsSolver::Controls& c)
+{
+  for (const bool integer : {true, false})
+  {
+    const std::string stem = integer ? "mat_mumps_icntl_" : "mat_mumps_cntl_";
+    if (key.rfind(stem, 0) != 0)
+      continue;
+    const auto index = parse<int>(key.substr(stem.size()));
+    if (!index || *index < 1 || *index > (integer ? 60 : 15))
+      return false;
+    if (integer)
+    {
+      const auto v = parse<int>(value);
+      if (v)
+        c.icntl[*index] = *v;
+      return bool(v);
+    }
+    const auto v = parse<double>(value);
+    if (v)
+      c.cntl[*index] = *v;
+    return bool(v);
+  }
+  return false;
+}
+
 /// The MUMPS controls of options that ask for a MUMPS factorisation and nothing else
-/// (ksp_type preonly, pc_type lu or cholesky, mat_mumps_icntl_<i>, mat_mumps_cntl_<i>);
-/// nullopt for any other option, which a PETSc KSP then honours.
+/// (ksp_type preonly, pc_type lu or cholesky, MUMPS controls); nullopt for any other
+/// option, which a PETSc KSP then honours.
 std::optional<MumpsSolver::Controls> mumps_controls(const std::map<std::string, std::string>& all)
 {
   MumpsSolver::Controls c;
   for (const auto& [key, value] : all)
   {
-    if ((key == "ksp_type" && value == "preonly")
-        || (key == "pc_type" && (value == "lu" || value == "cholesky"))
-        || (key == "pc_factor_mat_solver_type" && value == "mumps"))
-      continue;
-    for (const bool integer : {true, false})
-    {
-      const std::string stem = integer ? "mat_mumps_icntl_" : "mat_mumps_cntl_";
-      if (key.rfind(stem, 0) != 0)
-        continue;
-      const auto index = parse<int>(key.substr(stem.size()));
-      if (!index || *index < 1 || *index > (integer ? 60 : 15))
-        return std::nullopt;
-      if (integer)
-      {
-        const auto v = parse<int>(value);
-        if (!v)
-          return std::nullopt;
-        c.icntl[*index] = *v;
-      }
-      else
-      {
-        const auto v = parse<double>(value);
-        if (!v)
-          return std::nullopt;
-        c.cntl[*index] = *v;
-      }
-      goto next_option;
-    }
-    return std::nullopt;
-  next_option:;
+    const bool direct = (key == "ksp_type" && value == "preonly")
+                        || (key == "pc_type" && (value == "lu" || value == "cholesky"))
+                        || (key == "pc_factor_mat_solver_type" && value == "mumps");
+    if (!direct && !add_mumps_control(key, value, c))
+      return std::nullopt;
   }
-  if (!all.count("ksp_type") || !all.count("pc_type") || !all.count("pc_factor_mat_solver_type"))
-    return std::nullopt;
   return c;
 }
 } // namespace
@@ -215,16 +216,18 @@ void LinearSolver::solve_directly(const std::vector<const dolfinx::la::Vector<T>
 {
   // MUMPS solves in place: each x takes the owned entries of its b first.
   std::vector<double*> columns;
+  const std::int64_t n = std::int64_t(bs[0]->map()->size_local()) * bs[0]->bs();
   for (std::size_t j = 0; j < bs.size(); ++j)
   {
-    const auto& map = *bs[j]->map();
-    const std::size_t n = std::size_t(map.size_local()) * bs[j]->bs();
+    if (std::int64_t(bs[j]->map()->size_local()) * bs[j]->bs() != n
+        || std::int64_t(xs[j]->map()->size_local()) * xs[j]->bs() != n)
+      throw std::logic_error("LinearSolver: right-hand sides and solutions of different sizes");
     std::copy_n(bs[j]->array().begin(), n, xs[j]->mutable_array().begin());
     columns.push_back(xs[j]->mutable_array().data());
   }
   try
   {
-    mumps_->solve(columns);
+    mumps_->solve(columns, n);
   }
   catch (const MumpsError& e)
   {

@@ -266,8 +266,12 @@ void MumpsSolver::factorise(Mat A)
   run(2, "factorisation");
 }
 
-void MumpsSolver::solve(std::span<double* const> columns)
+void MumpsSolver::solve(std::span<double* const> columns, std::int64_t rows)
 {
+  if (rows != owned_rows_)
+    throw MumpsError("MUMPS solve: the vectors have " + std::to_string(rows)
+                     + " owned entries, the factorised matrix " + std::to_string(owned_rows_)
+                     + " owned rows");
   const int k = int(columns.size());
   const std::size_t n = std::size_t(owned_rows_);
   rhs_.resize(n * k);

@@ -47,9 +47,9 @@ public:
   /// Factorise A. The symbolic analysis runs when A or its nonzero pattern is new; with
   /// the same pattern only the numerical factorisation is repeated.
   void factorise(Mat A);
-  /// Solves A x = b in place for every column: columns[j] holds the owned rows of b_j on
-  /// entry and of x_j on return (one sweep over the factors for all columns).
-  void solve(std::span<double* const> columns);
+  /// Solves A x = b in place for every column: columns[j] holds the `rows` owned rows of
+  /// b_j on entry and of x_j on return (one sweep over the factors for all columns).
+  void solve(std::span<double* const> columns, std::int64_t rows);
 
 private:
   void run(int job, const char* phase);

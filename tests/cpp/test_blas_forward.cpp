@@ -39,11 +39,23 @@ double op(const std::vector<double>& x, int ld, bool transposed, int i, int j)
 constexpr double kTol = 1e-13;
 } // namespace
 
+void gemm_matches_the_definition(int m, int k);
+void triangular_solve_matches_the_definition(int m);
+
 // C = alpha op(A) op(B) + beta C from the definition, for every shape and option MUMPS uses
 // and more: n = 1..4 columns run in cpp/BlasForward.cpp, n = 5 in the BLAS library.
 TEST(BlasForward, GemmMatchesTheDefinition)
 {
-  const int m = 37, k = 23, pad = 5;
+  // Sizes of MUMPS' solve (blocks of 6 x 25 and 25 x 6 on average) and ones that leave
+  // every remainder of the 4-row blocks.
+  for (const auto& [m, k] : std::vector<std::pair<int, int>>{{37, 23}, {1, 1}, {2, 3}, {3, 1},
+                                                             {5, 7}, {6, 25}, {25, 6}, {7, 2}})
+    gemm_matches_the_definition(m, k);
+}
+
+void gemm_matches_the_definition(int m, int k)
+{
+  const int pad = 5;
   for (int n = 1; n <= 5; ++n)
     for (const bool ta : {false, true})
       for (const bool tb : {false, true})
@@ -71,8 +83,8 @@ TEST(BlasForward, GemmMatchesTheDefinition)
           for (int j = 0; j < n; ++j)
             for (int i = 0; i < m; ++i)
               EXPECT_NEAR(c[i + j * ldc], expected[i + j * m], kTol)
-                  << "n " << n << " transa " << ta << " transb " << tb << " beta " << beta
-                  << " entry " << i << "," << j;
+                  << "m " << m << " k " << k << " n " << n << " transa " << ta << " transb "
+                  << tb << " beta " << beta << " entry " << i << "," << j;
         }
 }
 
@@ -89,7 +101,13 @@ TEST(BlasForward, GemmWithEmptyProductOnlyScalesC)
 // op(T) X = alpha B solved in place, for n = 1..4 (here) and 5 (the BLAS library).
 TEST(BlasForward, TriangularSolveMatchesTheDefinition)
 {
-  const int m = 31, lda = m + 3, ldb = m + 2;
+  for (const int m : {31, 1, 2, 3, 6, 9}) // 6: MUMPS' pivot blocks of the vesicle
+    triangular_solve_matches_the_definition(m);
+}
+
+void triangular_solve_matches_the_definition(int m)
+{
+  const int lda = m + 3, ldb = m + 2;
   auto a = random_values(std::size_t(lda) * m, 6);
   for (int i = 0; i < m; ++i)
     a[i + i * lda] += 4; // well conditioned
@@ -121,7 +139,8 @@ TEST(BlasForward, TriangularSolveMatchesTheDefinition)
             for (int col = 0; col < n; ++col)
               for (int i = 0; i < m; ++i)
                 EXPECT_NEAR(b[i + col * ldb], x[i + col * ldb], 1e-12)
-                    << "n " << n << " alpha " << alpha << " lower " << lower << " trans " << ta
+                    << "m " << m << " n " << n << " alpha " << alpha << " lower " << lower
+                    << " trans " << ta
                     << " unit " << unit << " entry " << i << "," << col;
           }
 }
