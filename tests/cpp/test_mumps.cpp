@@ -40,9 +40,6 @@ Mat grid_matrix(double shift, double convection)
   return A;
 }
 
-/// The same pattern with every value scaled by s (a "new step" on the same mesh).
-void scale(Mat A, double s) { MatScale(A, s); }
-
 using Vector = dolfinx::la::Vector<T>;
 
 std::shared_ptr<const dolfinx::common::IndexMap> row_map(Mat A)
@@ -145,37 +142,34 @@ const std::map<std::string, std::string> through_petsc{{"ksp_norm_type", "none"}
 // and Cholesky and to 2e-13 for L D L^T of the indefinite matrix (PETSc hands MUMPS the
 // triangle in another order); relative residuals 1e-14 to 4e-12. Asserted 1e-10.
 constexpr double round_off = 1e-10;
+
+/// Solves with MUMPS directly and through PETSc's interface agree, and the residual is
+/// round-off; A is destroyed.
+void expect_direct_equals_petsc(Mat A, Symmetry symmetry)
+{
+  const auto direct = solve_all(A, symmetry, {});
+  const auto petsc = solve_all(A, symmetry, through_petsc);
+  EXPECT_LT(relative_difference(direct, petsc), round_off);
+  EXPECT_LT(relative_residual(A, direct), round_off);
+  MatDestroy(&A);
+}
 } // namespace
 
 TEST(Mumps, UnsymmetricLuEqualsPetscInterface)
 {
-  Mat A = grid_matrix(0.01, 0.4);
-  const auto direct = solve_all(A, Symmetry::general, {});
-  const auto petsc = solve_all(A, Symmetry::general, through_petsc);
-  EXPECT_LT(relative_difference(direct, petsc), round_off);
-  EXPECT_LT(relative_residual(A, direct), round_off);
-  MatDestroy(&A);
+  expect_direct_equals_petsc(grid_matrix(0.01, 0.4), Symmetry::general);
 }
 
 TEST(Mumps, SymmetricIndefiniteLdltEqualsPetscInterface)
 {
   Mat A = grid_matrix(-0.5, 0); // eigenvalues from -0.5 to 7.5: indefinite
   MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE);
-  const auto direct = solve_all(A, Symmetry::symmetric, {});
-  const auto petsc = solve_all(A, Symmetry::symmetric, through_petsc);
-  EXPECT_LT(relative_difference(direct, petsc), round_off);
-  EXPECT_LT(relative_residual(A, direct), round_off);
-  MatDestroy(&A);
+  expect_direct_equals_petsc(A, Symmetry::symmetric);
 }
 
 TEST(Mumps, PositiveDefiniteCholeskyEqualsPetscInterface)
 {
-  Mat A = grid_matrix(0.1, 0);
-  const auto direct = solve_all(A, Symmetry::positive_definite, {});
-  const auto petsc = solve_all(A, Symmetry::positive_definite, through_petsc);
-  EXPECT_LT(relative_difference(direct, petsc), round_off);
-  EXPECT_LT(relative_residual(A, direct), round_off);
-  MatDestroy(&A);
+  expect_direct_equals_petsc(grid_matrix(0.1, 0), Symmetry::positive_definite);
 }
 
 TEST(Mumps, NewValuesOnTheSamePatternAreFactorisedAgain)
@@ -185,7 +179,7 @@ TEST(Mumps, NewValuesOnTheSamePatternAreFactorisedAgain)
   Mat A = grid_matrix(0.01, 0.4);
   LinearSolver solver(MPI_COMM_WORLD, "mumps_reuse_", {}, Symmetry::general);
   const auto first = solve_all(A, Symmetry::general, {}, &solver);
-  scale(A, 2.0);
+  MatScale(A, 2.0); // new values on the same pattern
   auto second = solve_all(A, Symmetry::general, {}, &solver);
   for (auto& x : second)
     for (auto& v : x.mutable_array())
