@@ -188,10 +188,8 @@ void MumpsSolver::read_pattern(Mat A)
     add_block(b.off_diagonal, [&](PetscInt j) { return b.off_columns[j]; });
   if (std::int64_t(picks_.size()) == position)
     picks_.clear(); // every entry, in order: the values are taken as they are
-  else
-    values_.resize(rows_.size());
-  if (ranks_ > 1)
-    values_.resize(rows_.size());
+  // A copy of the values unless MUMPS reads PETSc's array itself (one rank, every entry).
+  values_.resize(ranks_ > 1 || !picks_.empty() ? rows_.size() : 0);
 
   id_.n = MUMPS_INT(rows);
   if (ranks_ > 1)
