@@ -1,5 +1,5 @@
+#include "scene/MumpsControl.h"
 #include "scene/Sections.h"
-#include <cstdlib>
 
 namespace cellphase::scene
 {
@@ -7,40 +7,16 @@ using namespace yaml;
 
 namespace
 {
-bool is_integer(const std::string& t)
-{
-  std::size_t i = (!t.empty() && (t[0] == '-' || t[0] == '+')) ? 1 : 0;
-  if (i == t.size())
-    return false;
-  for (; i < t.size(); ++i)
-    if (t[i] < '0' || t[i] > '9')
-      return false;
-  return t.size() < 10; // within MUMPS' 32-bit integers
-}
-
-bool is_number(const std::string& t)
-{
-  char* end = nullptr;
-  std::strtod(t.c_str(), &end);
-  return !t.empty() && end == t.c_str() + t.size();
-}
-
 /// mat_mumps_icntl_<i> and mat_mumps_cntl_<i>: an index that MUMPS has and a value of its type.
 void check_mumps_control(const Value& v, const std::string& key, const std::string& value)
 {
-  for (const bool integer : {true, false})
-  {
-    const std::string stem = integer ? "mat_mumps_icntl_" : "mat_mumps_cntl_";
-    if (key.rfind(stem, 0) != 0)
-      continue;
-    const std::string index = key.substr(stem.size());
-    const int last = integer ? 60 : 15;
-    if (!is_integer(index) || std::atoi(index.c_str()) < 1 || std::atoi(index.c_str()) > last)
-      v.fail("MUMPS has " + std::string(integer ? "ICNTL" : "CNTL") + "(1) to ("
-             + std::to_string(last) + "): write " + stem + "<1.." + std::to_string(last) + ">");
-    if (integer ? !is_integer(value) : !is_number(value))
-      v.fail("found " + v.found() + ", expected " + (integer ? "an integer" : "a number"));
-  }
+  const MumpsControl c = read_mumps_control(key, value);
+  const std::string last = std::to_string(c.last_index());
+  if (c.status == MumpsControl::Status::bad_index)
+    v.fail("MUMPS has " + std::string(c.integer ? "ICNTL" : "CNTL") + "(1) to (" + last
+           + "): write " + c.stem() + "<1.." + last + ">");
+  if (c.status == MumpsControl::Status::bad_value)
+    v.fail("found " + v.found() + ", expected " + (c.integer ? "an integer" : "a number"));
 }
 } // namespace
 

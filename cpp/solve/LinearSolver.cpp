@@ -1,58 +1,13 @@
 #include "solve/LinearSolver.h"
+#include "scene/MumpsControl.h"
 #include "util/Clock.h"
 #include <algorithm>
 #include <optional>
-#include <type_traits>
 
 namespace cellphase
 {
 namespace
 {
-/// Integer or number of a MUMPS control, or nullopt if the text is not one.
-template <typename V>
-std::optional<V> parse(const std::string& text)
-{
-  try
-  {
-    std::size_t used = 0;
-    const V v = std::is_integral_v<V> ? V(std::stoi(text, &used)) : V(std::stod(text, &used));
-    if (used == text.size())
-      return v;
-  }
-  catch (const std::exception&)
-  {
-  }
-  return std::nullopt;
-}
-
-/// Adds key = value to c if the key is a MUMPS control (mat_mumps_icntl_<1..60> with an
-/// integer, mat_mumps_cntl_<1..15> with a number); false otherwise.
-bool add_mumps_control(const std::string& key, const std::string& value,
-                       MumpsSolver::Controls& c)
-{
-  for (const bool integer : {true, false})
-  {
-    const std::string stem = integer ? "mat_mumps_icntl_" : "mat_mumps_cntl_";
-    if (key.rfind(stem, 0) != 0)
-      continue;
-    const auto index = parse<int>(key.substr(stem.size()));
-    if (!index || *index < 1 || *index > (integer ? 60 : 15))
-      return false;
-    if (integer)
-    {
-      const auto v = parse<int>(value);
-      if (v)
-        c.icntl[*index] = *v;
-      return bool(v);
-    }
-    const auto v = parse<double>(value);
-    if (v)
-      c.cntl[*index] = *v;
-    return bool(v);
-  }
-  return false;
-}
-
 /// The MUMPS controls of options that ask for a MUMPS factorisation and nothing else
 /// (ksp_type preonly, pc_type lu or cholesky, MUMPS controls); nullopt for any other
 /// option, which a PETSc KSP then honours.
@@ -64,8 +19,15 @@ std::optional<MumpsSolver::Controls> mumps_controls(const std::map<std::string, 
     const bool direct = (key == "ksp_type" && value == "preonly")
                         || (key == "pc_type" && (value == "lu" || value == "cholesky"))
                         || (key == "pc_factor_mat_solver_type" && value == "mumps");
-    if (!direct && !add_mumps_control(key, value, c))
+    if (direct)
+      continue;
+    const scene::MumpsControl m = scene::read_mumps_control(key, value);
+    if (m.status != scene::MumpsControl::Status::ok)
       return std::nullopt;
+    if (m.integer)
+      c.icntl[m.index] = int(m.value);
+    else
+      c.cntl[m.index] = m.value;
   }
   return c;
 }

@@ -70,13 +70,9 @@ std::vector<Vector> right_hand_sides(Mat A)
   return bs;
 }
 
-/// x_j = A^-1 b_j for all three columns with a solver of the given options.
-std::vector<Vector> solve_all(Mat A, Symmetry symmetry,
-                              const std::map<std::string, std::string>& options,
-                              LinearSolver* keep = nullptr)
+/// x_j = A^-1 b_j for all three columns, factorising A with the given solver.
+std::vector<Vector> solve_all(Mat A, LinearSolver& solver)
 {
-  LinearSolver own(MPI_COMM_WORLD, "mumps_test_", options, symmetry);
-  LinearSolver& solver = keep ? *keep : own;
   solver.set_operator(A);
   auto bs = right_hand_sides(A);
   std::vector<Vector> xs;
@@ -147,8 +143,10 @@ constexpr double round_off = 1e-10;
 /// round-off; A is destroyed.
 void expect_direct_equals_petsc(Mat A, Symmetry symmetry)
 {
-  const auto direct = solve_all(A, symmetry, {});
-  const auto petsc = solve_all(A, symmetry, through_petsc);
+  LinearSolver direct_solver(MPI_COMM_WORLD, "mumps_direct_", {}, symmetry);
+  LinearSolver petsc_solver(MPI_COMM_WORLD, "mumps_petsc_", through_petsc, symmetry);
+  const auto direct = solve_all(A, direct_solver);
+  const auto petsc = solve_all(A, petsc_solver);
   EXPECT_LT(relative_difference(direct, petsc), round_off);
   EXPECT_LT(relative_residual(A, direct), round_off);
   MatDestroy(&A);
@@ -178,9 +176,9 @@ TEST(Mumps, NewValuesOnTheSamePatternAreFactorisedAgain)
   // solution must be that of the new values (x / 2 for A * 2), not of the old factors.
   Mat A = grid_matrix(0.01, 0.4);
   LinearSolver solver(MPI_COMM_WORLD, "mumps_reuse_", {}, Symmetry::general);
-  const auto first = solve_all(A, Symmetry::general, {}, &solver);
+  const auto first = solve_all(A, solver);
   MatScale(A, 2.0); // new values on the same pattern
-  auto second = solve_all(A, Symmetry::general, {}, &solver);
+  auto second = solve_all(A, solver);
   for (auto& x : second)
     for (auto& v : x.mutable_array())
       v *= 2;
