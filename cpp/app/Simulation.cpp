@@ -291,10 +291,14 @@ void Simulation::open_output(const LoopState& start)
                                           comm_, restart_ ? start.step : -1);
   if (out.every > 0)
     writer_ = make_writer(start);
-  log("cellphase: %s, %dD, model %s (%s), %d refinement levels, %lld dofs\n",
+  int ranks;
+  MPI_Comm_size(comm_, &ranks);
+  log("cellphase: %s, %dD, model %s (%s), %d refinement levels, %lld dofs, %d MPI rank%s, "
+      "%d assembly thread%s per rank\n",
       scene_.source.c_str(), scene_.domain.dim, scene::to_string(scene_.phase_field.model),
       scene::to_string(scene_.numerics.linearisation), adaptive_.levels(),
-      (long long)(module_.num_dofs() + (flow_ ? flow_->num_dofs() : 0)));
+      (long long)(module_.num_dofs() + (flow_ ? flow_->num_dofs() : 0)), ranks,
+      ranks > 1 ? "s" : "", module_.threads(), module_.threads() > 1 ? "s" : "");
 }
 
 std::unique_ptr<FieldWriter> Simulation::make_writer(const LoopState& start) const

@@ -187,12 +187,24 @@ void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
 void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
                                          const la::Vector<T>& lifting, const BCs& bcs) const
 {
+  assemble_local(b, L, &lifting);
+  finish(b, bcs, 1.0);
+}
+
+void PeriodicConstraint::assemble_local(la::Vector<T>& b, const Form& L,
+                                        const la::Vector<T>* lifting) const
+{
   b.set(0.0);
   assemble_unscattered(b, L);
-  std::transform(b.array().begin(), b.array().end(), lifting.array().begin(),
-                 b.mutable_array().begin(), std::plus<T>());
+  if (lifting)
+    std::transform(b.array().begin(), b.array().end(), lifting->array().begin(),
+                   b.mutable_array().begin(), std::plus<T>());
+}
+
+void PeriodicConstraint::finish(la::Vector<T>& b, const BCs& bcs, double bc_scale) const
+{
   b.scatter_rev(std::plus<T>());
-  fem::set_bc<T>(b.mutable_array(), bcs);
+  fem::set_bc<T>(b.mutable_array(), bcs, bc_scale);
 }
 
 void PeriodicConstraint::lifting(la::Vector<T>& l, std::shared_ptr<const Form> a,
@@ -224,13 +236,6 @@ void PeriodicConstraint::add_lifting(la::Vector<T>& b, std::shared_ptr<const For
     fem::apply_lifting<T>(b.mutable_array(), {a}, {bcs}, {}, 1.0);
 }
 
-void PeriodicConstraint::assemble_load(la::Vector<T>& b, const Form& L, const BCs& bcs) const
-{
-  b.set(0.0);
-  assemble_unscattered(b, L);
-  b.scatter_rev(std::plus<T>());
-  fem::set_bc<T>(b.mutable_array(), bcs, 0.0);
-}
 
 void PeriodicConstraint::backsubstitute(la::Vector<T>& x, bool homogeneous) const
 {

@@ -58,8 +58,13 @@ public:
   /// The same without the copy: x then holds the whole solution in V's numbering (prefix).
   /// `homogeneous`: x solves a load with zero Dirichlet values (no constant slave parts).
   void backsubstitute(dolfinx::la::Vector<T>& x, bool homogeneous = false) const;
-  /// b <- L with zero values at the Dirichlet dofs of bcs (unit loads): no lifting.
-  void assemble_load(dolfinx::la::Vector<T>& b, const Form& L, const BCs& bcs) const;
+  /// The two halves of assemble_vector, for vectors assembled on two threads:
+  /// b <- L (+ lifting) on owned and ghost entries, no MPI, so any thread may call it; then,
+  /// on the thread that calls MPI, the ghost accumulation and the Dirichlet values of bcs
+  /// times bc_scale (1 for a right-hand side, 0 for a unit load).
+  void assemble_local(dolfinx::la::Vector<T>& b, const Form& L,
+                      const dolfinx::la::Vector<T>* lifting = nullptr) const;
+  void finish(dolfinx::la::Vector<T>& b, const BCs& bcs, double bc_scale) const;
 
 private:
   /// b += L on owned and ghost entries (no ghost accumulation, no BC values).

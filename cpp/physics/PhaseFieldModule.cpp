@@ -1,6 +1,7 @@
 #include "physics/PhaseFieldModule.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
+#include "util/Cpus.h"
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -47,7 +48,7 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
       stabilised_(scene.numerics.linearisation == scene::Linearisation::stabilised),
       symmetrisable_(stabilised_ && (scene.phase_field.model == Model::helfrich_lagrange
                                      || scene.phase_field.model == Model::helfrich_penalty)),
-      domain_volume_(scene.domain.volume())
+      spare_cpu_(cpus_per_rank(comm) > 1), domain_volume_(scene.domain.volume())
 {
   const auto& pf = scene.phase_field;
   const auto& nu = scene.numerics;
@@ -313,10 +314,12 @@ double PhaseFieldModule::phi_dot(const la::Vector<T>& weights, const la::Vector<
   return sum;
 }
 
-void PhaseFieldModule::assemble_constraint_loads(std::vector<const la::Vector<T>*>& rhs,
+void PhaseFieldModule::assemble_right_hand_sides(std::vector<const la::Vector<T>*>& rhs,
                                                  std::vector<la::Vector<T>*>& solutions)
 {
-  // Unit loads are homogeneous at Dirichlet rows (scale 0): phi^{n+1} keeps its BC value.
+  rhs = {b_.get()};
+  solutions = {x_.get()};
+  std::vector<UnitLoad*> stale;
   for (auto& load : loads_)
   {
     // The volume load does not depend on the state: with a matrix kept from the last
@@ -324,10 +327,35 @@ void PhaseFieldModule::assemble_constraint_loads(std::vector<const la::Vector<T>
     if (load.kind == UnitLoad::volume && load.current)
       continue;
     load.current = true;
-    periodic_->assemble_load(*load.b, *load.form, bcs_);
+    stale.push_back(&load);
     rhs.push_back(load.b.get());
     solutions.push_back(load.x.get());
   }
+  // The loads' cell loops run beside the right-hand side's when a CPU is spare.
+  auto local_loads = std::async(spare_cpu_ ? std::launch::async : std::launch::deferred,
+                                [this, &stale]
+                                {
+                                  for (auto* load : stale)
+                                    periodic_->assemble_local(*load->b, *load->form);
+                                });
+  periodic_->assemble_local(*b_, *L_, lifting_.get());
+  local_loads.get();
+  periodic_->finish(*b_, bcs_, 1.0);
+  // Unit loads are homogeneous at Dirichlet rows (scale 0): phi^{n+1} keeps its BC value.
+  for (auto* load : stale)
+    periodic_->finish(*load->b, bcs_, 0.0);
+}
+
+void PhaseFieldModule::start_area_linearisation()
+{
+  // Both read only phi^n (the standalone field, unchanged until scatter_state()).
+  auto assemble = [this]
+  {
+    area_weights_->set(0.0);
+    fem::assemble_vector(area_weights_->mutable_array(), *area_weights_form_);
+    return fem::assemble_scalar(*energy_ch_);
+  };
+  local_energy_ch_ = std::async(spare_cpu_ ? std::launch::async : std::launch::deferred, assemble);
 }
 
 void PhaseFieldModule::apply_constraint_loads()
@@ -335,9 +363,9 @@ void PhaseFieldModule::apply_constraint_loads()
   // phi^{n+1} = phi_0 + sum_j m_j phi_j. Its volume (3.10) is linear in m, its area
   // (3.11) is linearised about phi^n: A = A(phi^n) + dA[phi_0 - phi^n] + sum_j m_j dA[phi_j].
   const std::size_t K = loads_.size();
-  area_weights_->set(0.0);
-  fem::assemble_vector(area_weights_->mutable_array(), *area_weights_form_);
+  double energy_ch = local_energy_ch_.get();
   area_weights_->scatter_rev(std::plus<T>());
+  MPI_Allreduce(MPI_IN_PLACE, &energy_ch, 1, MPI_DOUBLE, MPI_SUM, comm_);
   std::vector<double> vol(K + 1), darea(K + 1);
   for (std::size_t j = 0; j <= K; ++j)
   {
@@ -345,7 +373,7 @@ void PhaseFieldModule::apply_constraint_loads()
     vol[j] = phi_dot(*volume_weights_, x, false);
     darea[j] = phi_dot(*area_weights_, x, j == 0);
   }
-  darea[0] += integral(energy_ch_);
+  darea[0] += energy_ch;
   // One row per load: multipliers hold g(phi^{n+1}) = target (3.28)-(3.29); penalties are
   // m = p (g(phi^{n+1}) - target) (3.32)/(3.35).
   const bool multipliers = scene_.phase_field.model == Model::helfrich_lagrange;
@@ -424,7 +452,12 @@ StepTimings PhaseFieldModule::step(double dt)
     periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
     periodic_->lifting(*lifting_, a_, bcs_); // -A g, (phi = -1)
   }
-  periodic_->assemble_vector(*b_, *L_, *lifting_, bcs_);
+  if (rebuild)
+    for (auto& load : loads_)
+      load.current = false;
+  std::vector<const la::Vector<T>*> rhs;
+  std::vector<la::Vector<T>*> solutions;
+  assemble_right_hand_sides(rhs, solutions);
   t.assemble = seconds_since(t0);
   if (rebuild)
   {
@@ -434,16 +467,11 @@ StepTimings PhaseFieldModule::step(double dt)
                                                                            : Symmetry::general);
     t.factorise = solver_->set_operator(A_->mat());
     ++factorisations_;
-    for (auto& load : loads_)
-      load.current = false;
     matrix_current_ = true;
   }
-  std::vector<const la::Vector<T>*> rhs{b_.get()};
-  std::vector<la::Vector<T>*> solutions{x_.get()};
   auto t1 = Clock::now();
-  assemble_constraint_loads(rhs, solutions);
-  t.assemble += seconds_since(t1);
-  t1 = Clock::now();
+  if (!loads_.empty())
+    start_area_linearisation();
   solver_->solve(rhs, solutions,
                  std::string("phase field (") + scene::to_string(scene_.phase_field.model) + ")");
   // Slave values of every solution; the unit loads have zero Dirichlet values.

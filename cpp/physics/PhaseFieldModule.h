@@ -5,7 +5,9 @@
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
 #include "compat/Periodic.h"
+#include "util/Cpus.h"
 #include "solve/LinearSolver.h"
+#include <future>
 #include <map>
 #include <memory>
 #include <string>
@@ -65,6 +67,9 @@ public:
   std::array<double, 2> multipliers() const { return {lam_v_->value[0], lam_a_->value[0]}; }
   /// Energy whose gradient flow the model is: E_CH, E_H or E_H plus penalties (3.30)/(3.33).
   double total_energy(double phi_integral, double energy_ch, double helfrich) const;
+  /// Threads of this rank: 2 when a CPU is spare for the assembly that runs beside the
+  /// main thread's (the unit loads, the area linearisation during the solve), else 1.
+  int threads() const { return spare_cpu_ && forms_.load_a ? 2 : 1; }
   /// Matrix factorisations since the start (all meshes).
   int factorisations() const { return factorisations_; }
 
@@ -74,14 +79,18 @@ private:
   void bind_system_forms(); ///< a_, L_ (they depend on the velocity)
   void compute_mu_from_phi();
   void update_multipliers(double dt);
-  /// Assemble the unit loads whose solutions are not current: they are solved together
-  /// with the step's own right-hand side.
-  void assemble_constraint_loads(std::vector<const dolfinx::la::Vector<T>*>& rhs,
+  /// Assemble the step's right-hand side and the unit loads whose solutions are not
+  /// current: they are solved together. Their vectors and solutions in the solver's order.
+  void assemble_right_hand_sides(std::vector<const dolfinx::la::Vector<T>*>& rhs,
                                  std::vector<dolfinx::la::Vector<T>*>& solutions);
   /// Helfrich models: add the unit-load solutions with the multipliers that hold the
   /// constraints at t^{n+1} (helfrich_lagrange) or with the penalties evaluated at t^{n+1}
   /// (helfrich_penalty, helfrich_hm1), E_CH linearised about phi^n.
   void apply_constraint_loads();
+  /// The area weights dA[.] and E_CH about phi^n do not depend on the step's solution: their
+  /// local assembly (no MPI) starts before the solve, on a second thread when the process
+  /// has a CPU to spare; apply_constraint_loads() waits for it.
+  void start_area_linearisation();
   void gather_state();   ///< standalone fields -> mixed vector u0
   void scatter_state();  ///< mixed solution -> standalone fields
   double integral(const std::shared_ptr<Form>& f) const;
@@ -125,6 +134,8 @@ private:
   /// these weights on V (volume: once per mesh; area: once per step, about phi^n).
   std::shared_ptr<Form> volume_weights_form_, area_weights_form_;
   std::unique_ptr<dolfinx::la::Vector<T>> volume_weights_, area_weights_;
+  std::future<double> local_energy_ch_; ///< of start_area_linearisation()
+  bool spare_cpu_; ///< a second thread may run beside the main one (cpus_per_rank)
   double phi_dot(const dolfinx::la::Vector<T>& weights, const dolfinx::la::Vector<T>& x,
                  bool minus_phi_n) const;
   /// Periodic directions of the scene (plain assembly without); rebuilt on every mesh.

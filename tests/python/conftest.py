@@ -25,8 +25,9 @@ def mpirun_prefix(ranks):
     return [launcher, *extra, "--oversubscribe", "-n", str(ranks)]
 
 
-def run_scene(scene, workdir, ranks=1, timeout=900):
-    """Write `scene` (a dict) to workdir, run it, return observables as columns."""
+def run_scene(scene, workdir, ranks=1, timeout=900, env=None, log=None):
+    """Write `scene` (a dict) to workdir, run it (with `env` added to the environment),
+    return observables as columns; `log` (a list), if given, receives the standard output."""
     require_exe()
     scene = dict(scene)
     scene.setdefault("output", {})
@@ -35,8 +36,10 @@ def run_scene(scene, workdir, ranks=1, timeout=900):
     path = workdir / "scene.yaml"
     path.write_text(yaml.safe_dump(scene))
     proc = subprocess.run(mpirun_prefix(ranks) + [EXE, "run", str(path)], capture_output=True,
-                          text=True, timeout=timeout)
+                          text=True, timeout=timeout, env={**os.environ, **(env or {})})
     assert proc.returncode == 0, f"cellphase failed:\n{proc.stdout}\n{proc.stderr}"
+    if log is not None:
+        log.append(proc.stdout)
     with open(workdir / "out" / "observables.csv") as f:
         rows = list(csv.DictReader(f))
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
