@@ -236,7 +236,6 @@ void PeriodicConstraint::add_lifting(la::Vector<T>& b, std::shared_ptr<const For
     fem::apply_lifting<T>(b.mutable_array(), {a}, {bcs}, {}, 1.0);
 }
 
-
 void PeriodicConstraint::backsubstitute(la::Vector<T>& x, bool homogeneous) const
 {
   if (!mpc_)

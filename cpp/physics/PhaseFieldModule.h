@@ -5,7 +5,6 @@
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
 #include "compat/Periodic.h"
-#include "util/Cpus.h"
 #include "solve/LinearSolver.h"
 #include <future>
 #include <map>
