@@ -48,7 +48,8 @@ A run that fails numerically (NaN, diverging solver, phi beyond numerics.limits.
 volume drift beyond numerics.limits.volume_drift) writes its last good state as a
 checkpoint and as fields, and stops.
 Run in parallel with: mpirun -n 2 -x OPENBLAS_NUM_THREADS=1 cellphase run SCENE
-(one BLAS thread per rank).
+(one BLAS thread per rank). A rank with a CPU to spare assembles part of the Helfrich step
+on a second thread (same results); OMP_NUM_THREADS=1 keeps it on one.
 
 Exit status: 0 success, 2 invalid scene or arguments (or no valid checkpoint to restart
 from), 3 numerical failure, 4 other errors (for example an output directory that cannot be
