@@ -40,7 +40,8 @@ F* next_definition(const char* name)
 // the first call picks the variant the processor runs (kernels are inlined into both).
 #define CELLPHASE_KERNEL [[gnu::always_inline]] inline
 
-/// C = beta C, without reading C when beta = 0 (BLAS semantics: NaN in C does not propagate).
+/// C = beta C, without reading C when beta = 0 (BLAS semantics: NaN in C does not propagate);
+/// dgemm's beta C and dtrsm's alpha B.
 CELLPHASE_KERNEL void scale_columns(int m, int n, double beta, double* c, std::ptrdiff_t ldc)
 {
   if (beta == 1.0)
@@ -232,10 +233,7 @@ CELLPHASE_KERNEL void small_trsm(const char* uplo, const char* transa, const cha
                                  int n, double alpha, const double* a, int lda, double* b,
                                  int ldb)
 {
-  if (alpha != 1.0)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < m; ++i)
-        b[i + std::ptrdiff_t(j) * ldb] = alpha == 0.0 ? 0.0 : alpha * b[i + std::ptrdiff_t(j) * ldb];
+  scale_columns(m, n, alpha, b, ldb);
   if (alpha == 0.0)
     return;
   const bool upper = *uplo == 'U' || *uplo == 'u';
