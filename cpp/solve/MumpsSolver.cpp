@@ -156,6 +156,7 @@ void MumpsSolver::read_pattern(Mat A)
   const PetscInt* ranges;
   MatGetOwnershipRanges(A, &ranges);
   row_ranges_.assign(ranges, ranges + ranks_ + 1);
+  plan_current_ = false; // the rows' owners are new
   PetscInt last_row;
   MatGetOwnershipRange(A, &first_row_, &last_row);
   owned_rows_ = last_row - first_row_;
@@ -303,52 +304,75 @@ void MumpsSolver::solve(std::span<double* const> columns, std::int64_t rows)
   return_solution(columns, k);
 }
 
-void MumpsSolver::return_solution(std::span<double* const> columns, int k)
+void MumpsSolver::plan_return()
 {
-  // Every solution row to the rank that owns it: one count exchange, then the row numbers
-  // (local to the owner) and the k values of each row.
+  // Every solution row to the rank that owns it: the counts, then the row numbers (local to
+  // the owner); the values follow at every solve in return_solution.
+  ReturnPlan& p = plan_;
+  p.held_rows = sol_rows_;
   const int held = int(sol_rows_.size());
-  std::vector<int> owner(held), send_counts(ranks_, 0);
+  std::vector<int> owner(held);
+  p.send_counts.assign(ranks_, 0);
   for (int i = 0; i < held; ++i)
   {
     const PetscInt row = sol_rows_[i] - 1;
     owner[i] = int(std::upper_bound(row_ranges_.begin(), row_ranges_.end(), row)
                    - row_ranges_.begin()) - 1;
-    ++send_counts[owner[i]];
+    ++p.send_counts[owner[i]];
   }
-  std::vector<int> send_offsets(ranks_ + 1, 0);
-  std::partial_sum(send_counts.begin(), send_counts.end(), send_offsets.begin() + 1);
-  std::vector<int> rows_out(held), fill(send_offsets.begin(), send_offsets.end() - 1);
-  std::vector<double> values_out(std::size_t(held) * k);
-  const std::size_t lsol = std::size_t(held);
+  p.send_offsets.assign(ranks_ + 1, 0);
+  std::partial_sum(p.send_counts.begin(), p.send_counts.end(), p.send_offsets.begin() + 1);
+  p.slot.resize(held);
+  std::vector<int> rows_out(held), fill(p.send_offsets.begin(), p.send_offsets.end() - 1);
   for (int i = 0; i < held; ++i)
   {
-    const int slot = fill[owner[i]]++;
-    rows_out[slot] = int(sol_rows_[i] - 1 - row_ranges_[owner[i]]);
-    for (int j = 0; j < k; ++j)
-      values_out[std::size_t(slot) * k + j] = sol_[i + j * lsol];
+    p.slot[i] = fill[owner[i]]++;
+    rows_out[p.slot[i]] = int(sol_rows_[i] - 1 - row_ranges_[owner[i]]);
   }
-  std::vector<int> recv_counts(ranks_);
-  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm_);
-  std::vector<int> recv_offsets(ranks_ + 1, 0);
-  std::partial_sum(recv_counts.begin(), recv_counts.end(), recv_offsets.begin() + 1);
-  const int received = recv_offsets[ranks_];
+  p.recv_counts.resize(ranks_);
+  MPI_Alltoall(p.send_counts.data(), 1, MPI_INT, p.recv_counts.data(), 1, MPI_INT, comm_);
+  p.recv_offsets.assign(ranks_ + 1, 0);
+  std::partial_sum(p.recv_counts.begin(), p.recv_counts.end(), p.recv_offsets.begin() + 1);
+  const int received = p.recv_offsets[ranks_];
   if (received != owned_rows_)
     throw MumpsError("MUMPS solve returned " + std::to_string(received) + " of the "
                      + std::to_string(owned_rows_) + " owned rows of the solution");
-  std::vector<int> rows_in(received);
-  MPI_Alltoallv(rows_out.data(), send_counts.data(), send_offsets.data(), MPI_INT,
-                rows_in.data(), recv_counts.data(), recv_offsets.data(), MPI_INT, comm_);
+  p.rows_in.resize(received);
+  MPI_Alltoallv(rows_out.data(), p.send_counts.data(), p.send_offsets.data(), MPI_INT,
+                p.rows_in.data(), p.recv_counts.data(), p.recv_offsets.data(), MPI_INT, comm_);
+  plan_current_ = true;
+}
+
+void MumpsSolver::return_solution(std::span<double* const> columns, int k)
+{
+  // The rows held here come from MUMPS' mapping of the fronts (the same at every solve
+  // with the same factors, "normally", says its guide, and after a refactorisation on the
+  // same pattern). A new plan when they or their owners changed on any rank: its exchange
+  // is collective.
+  int changed = plan_current_ && sol_rows_ == plan_.held_rows ? 0 : 1;
+  MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_MAX, comm_);
+  if (changed)
+    plan_return();
+  const ReturnPlan& p = plan_;
+  const std::size_t held = sol_rows_.size();
+  std::vector<double> values_out(held * k);
+  for (std::size_t i = 0; i < held; ++i)
+    for (int j = 0; j < k; ++j)
+      values_out[std::size_t(p.slot[i]) * k + j] = sol_[i + j * held];
+  // The k values of a row travel together: the plan's counts and offsets times k.
+  std::vector<int> send_counts(ranks_), send_offsets(ranks_), recv_counts(ranks_),
+      recv_offsets(ranks_);
   for (int r = 0; r < ranks_; ++r)
   {
-    send_counts[r] *= k, send_offsets[r] *= k;
-    recv_counts[r] *= k, recv_offsets[r] *= k;
+    send_counts[r] = p.send_counts[r] * k, send_offsets[r] = p.send_offsets[r] * k;
+    recv_counts[r] = p.recv_counts[r] * k, recv_offsets[r] = p.recv_offsets[r] * k;
   }
-  std::vector<double> values_in(std::size_t(received) * k);
+  const std::size_t received = p.rows_in.size();
+  std::vector<double> values_in(received * k);
   MPI_Alltoallv(values_out.data(), send_counts.data(), send_offsets.data(), MPI_DOUBLE,
                 values_in.data(), recv_counts.data(), recv_offsets.data(), MPI_DOUBLE, comm_);
-  for (int e = 0; e < received; ++e)
+  for (std::size_t e = 0; e < received; ++e)
     for (int j = 0; j < k; ++j)
-      columns[j][rows_in[e]] = values_in[std::size_t(e) * k + j];
+      columns[j][p.rows_in[e]] = values_in[e * k + j];
 }
 } // namespace cellphase

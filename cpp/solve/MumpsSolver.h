@@ -55,6 +55,7 @@ private:
   void run(int job, const char* phase);
   void read_pattern(Mat A);
   void read_values(Mat A);
+  void plan_return();
   void return_solution(std::span<double* const> columns, int k);
 
   DMUMPS_STRUC_C id_{};
@@ -71,5 +72,16 @@ private:
   std::vector<MUMPS_INT> owned_rhs_rows_; ///< 1-based global rows of the owned rhs entries
   std::vector<double> rhs_, sol_;
   std::vector<MUMPS_INT> sol_rows_;
+  /// Several ranks: where the solution rows held here go. The plan (and its exchange of
+  /// row numbers) is made again only when those rows or the matrix' pattern change.
+  struct ReturnPlan
+  {
+    std::vector<MUMPS_INT> held_rows; ///< sol_rows_ the plan was made for
+    std::vector<int> slot;            ///< send position of each held row
+    std::vector<int> send_counts, send_offsets, recv_counts, recv_offsets;
+    std::vector<int> rows_in;         ///< owned row of each received value
+  };
+  ReturnPlan plan_;
+  bool plan_current_ = false; ///< made for the current pattern
 };
 } // namespace cellphase

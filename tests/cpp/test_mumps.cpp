@@ -186,6 +186,24 @@ TEST(Mumps, NewValuesOnTheSamePatternAreFactorisedAgain)
   MatDestroy(&A);
 }
 
+TEST(Mumps, SecondSolveWithTheSameFactorsGivesTheSameSolution)
+{
+  // As a reused stabilised step: the solve alone, again. On two ranks the second solve
+  // sends the solution back with the plan made at the first one.
+  Mat A = grid_matrix(-0.5, 0);
+  MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE);
+  LinearSolver solver(MPI_COMM_WORLD, "mumps_again_", {}, Symmetry::symmetric);
+  const auto first = solve_all(A, solver);
+  auto bs = right_hand_sides(A);
+  std::vector<Vector> again;
+  for (auto& b : bs)
+    again.emplace_back(b.map(), 1);
+  solver.solve({&bs[0], &bs[1]}, {&again[0], &again[1]}, "the test system, again");
+  solver.solve(bs[2], again[2], "the test system, one column");
+  EXPECT_LT(relative_difference(again, first), round_off); // a wrong plan: O(1) errors
+  MatDestroy(&A);
+}
+
 TEST(Mumps, SingularMatrixIsASolverErrorNamingMumps)
 {
   // Row 0 emptied: no pivot can be found for it.
