@@ -1,18 +1,20 @@
 #include "app/Simulation.h"
-#include "app/FlowSetup.h"
 #include "app/StopSignal.h"
+#include "app/SubProblems.h"
 #include "io/FieldSnapshot.h"
 #include "io/Progress.h"
 #include "mesh/FieldTransfer.h"
-#include "physics/UnionPhaseField.h"
+#include "physics/PhaseFieldSubProblem.h"
 #include "scene/Check.h"
 #include "scene/Shapes.h"
 #include "util/Clock.h"
 #include "util/Mpi.h"
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 namespace cellphase
@@ -37,82 +39,107 @@ std::vector<std::string> split_names(const std::string& text)
     names.push_back(name);
   return names;
 }
+
+/// Checkpoints since the field registry: fields under their qualified names, scalars under
+/// their sub-problem's name.
+constexpr int checkpoint_format = 2;
+
+/// The spaces of the registry's kinds on one mesh (fields of one kind share their space).
+struct MeshSpaces
+{
+  std::shared_ptr<Mesh> mesh;
+  int dim;
+  std::shared_ptr<Space> scalar, vector;
+  std::shared_ptr<Space> of(FieldSpace kind)
+  {
+    if (kind == FieldSpace::scalar_p2)
+      return scalar ? scalar : scalar = create_p2_space(mesh, dim);
+    if (kind == FieldSpace::vector_p2)
+      return vector ? vector : vector = create_vector_p2_space(mesh, dim);
+    throw std::logic_error("fields of space 'other' are built by their owners");
+  }
+};
 } // namespace
 
-Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart)
+Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart,
+                       std::vector<std::unique_ptr<SubProblem>> extra)
     : scene_(scene), comm_(comm), restart_(restart), adaptive_(scene, comm),
-      module_(scene, comm),
+      split_(build_sub_problems(scene, comm)),
       checkpoints_(comm, scene.output.directory, scene.output.checkpoints.keep)
 {
-  if (scene.flow)
-    flow_ = std::make_unique<FlowModule>(flow_parameters(scene), comm);
-  if (scene.flow && scene.flow->inextensibility && scene.flow->inextensibility->concentration)
-    concentration_ = std::make_unique<ConcentrationModule>(
-        scene.flow->inextensibility->concentration->diffusion, scene.domain.periodic, comm);
+  for (auto& e : extra)
+    split_.push_back(std::move(e));
+  for (auto& sub : split_)
+    sub->declare(fields_);
+  check_plan();
+  order_attach();
 }
 
-void Simulation::attach_flow(std::shared_ptr<const Function> velocity,
-                             std::shared_ptr<const Function> concentration)
+void Simulation::check_plan() const
 {
-  if (!flow_)
-    return;
-  const auto& fields = module_.fields();
-  MembraneFields membrane;
-  if (scene_.flow->inextensibility)
-  {
-    membrane.phi_cells = union_phase_field({fields.at("phi")}); // (7.14); one field today
-    if (concentration_)
+  // The declarations must be the plan's lists, and every read field someone's or initial.
+  std::set<std::string> written{"cell.phi"};
+  for (const auto& sub : split_)
+    for (const auto& f : sub->writes())
     {
-      concentration_->attach(membrane.phi_cells, concentration);
-      membrane.concentration = concentration_->concentration();
+      if (!fields_.declared(f) || fields_.info(f).owner != sub->name())
+        throw std::logic_error(sub->name() + " writes " + f + " but does not declare it");
+      written.insert(f);
     }
+  for (const auto& name : fields_.names())
+  {
+    const auto& w = split_.end() != std::find_if(split_.begin(), split_.end(), [&](const auto& s)
+                                                 { return s->name() == fields_.info(name).owner; });
+    if (!w || !written.count(name))
+      throw std::logic_error("field " + name + " is declared but not in its owner's writes");
   }
-  flow_->attach(module_.space()->mesh(), fields.at("phi"), module_.interface_potential(),
-                velocity, membrane);
-  module_.set_velocity(flow_->velocity());
-  if (concentration_)
-    concentration_->set_velocity(flow_->velocity());
+  for (const auto& sub : split_)
+    for (const auto& f : sub->reads())
+      if (!written.count(f))
+        throw std::invalid_argument("sub-problem " + sub->name() + " reads field " + f
+                                    + ", which no sub-problem of the split writes");
 }
 
-FieldMap Simulation::all_fields() const
+void Simulation::order_attach()
 {
-  FieldMap all = module_.fields();
-  if (flow_)
+  // Topological order of attach_reads -> owners (a cycle is a programming error).
+  std::set<std::string> ready{"cell.phi"}; // initial data
+  std::vector<SubProblem*> pending;
+  for (auto& s : split_)
+    pending.push_back(s.get());
+  while (!pending.empty())
   {
-    all["v"] = flow_->velocity();
-    all["p"] = flow_->pressure();
-    if (flow_->multiplier())
-      all["lambda"] = flow_->multiplier();
+    auto it = std::find_if(pending.begin(), pending.end(), [&](SubProblem* s)
+                           {
+                             for (const auto& f : s->attach_reads())
+                               if (fields_.declared(f) && !ready.count(f))
+                                 return false;
+                             return true;
+                           });
+    if (it == pending.end())
+      throw std::logic_error("the sub-problems' attach_reads form a cycle");
+    for (const auto& f : (*it)->writes())
+      ready.insert(f);
+    attach_order_.push_back(*it);
+    pending.erase(it);
   }
-  if (concentration_)
-    all["c"] = concentration_->concentration();
-  return all;
+}
+
+void Simulation::attach_all()
+{
+  for (auto* sub : attach_order_)
+    sub->attach(fields_);
+  for (auto* sub : attach_order_)
+    sub->connect(fields_);
 }
 
 StepTimings Simulation::step(double dt)
 {
   StepTimings t;
-  if (flow_)
+  for (auto& sub : split_)
   {
-    solving_ = "v"; // names the module if its solver fails
-    flow_->set_area_target(module_.targets().area); // (3.69), fixed at the start
-    const FlowTimings f = flow_->step(dt);
-    t.assemble += f.assemble;
-    t.factorise += f.factorise;
-    t.solve += f.solve;
-    t.flow = f.assemble + f.factorise + f.solve;
-  }
-  solving_ = "phi";
-  const StepTimings p = module_.step(dt);
-  t.assemble += p.assemble;
-  t.factorise += p.factorise;
-  t.solve += p.solve;
-  if (concentration_)
-  {
-    solving_ = "c"; // (3.70) with v^{n+1} and phi^{n+1}
-    const double seconds = concentration_->step(dt);
-    t.solve += seconds;
-    t.flow += seconds;
+    solving_ = sub.get(); // names the module if its solver fails
+    t += sub->step(dt);
   }
   return t;
 }
@@ -139,38 +166,26 @@ Simulation::LoopState Simulation::initialise()
       values[i] = initial(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
   };
   auto mesh = adaptive_.build(analytic);
-  auto V = create_p2_space(mesh, scene_.domain.dim);
-  auto phi = std::make_shared<Function>(V);
+  auto phi = std::make_shared<Function>(create_p2_space(mesh, scene_.domain.dim));
   compat::interpolate(*phi, [&initial](double x, double y, double z) { return initial(x, y, z); });
-  module_.attach(V, {{"phi", phi}});
-  attach_flow(nullptr); // fluid at rest
-  observables_ = std::make_unique<Observables>(scene_, module_);
-  auto v = observables_->evaluate();
-  module_.set_targets({v.phi_integral, v.energy_ch});
-  initial_volume_ = v.volume;
+  fields_.set("cell.phi", phi);
+  attach_all(); // the other fields start from their owners' defaults (fluid at rest)
+  for (auto* sub : attach_order_)
+    sub->start();
   return {};
 }
 
 // Everything a checkpoint holds is what the loop needs to take the next step exactly as
 // an uninterrupted run would: the mesh (as the cells refined at each level, so that it is
-// rebuilt from the base mesh on any number of ranks), all fields, time, step and the
-// constraint targets. The models have no random numbers and no other history.
+// rebuilt from the base mesh on any number of ranks), the checkpointed fields of the
+// registry, time, step and the sub-problems' scalars (targets, multipliers, ...).
 std::string Simulation::save_checkpoint(const LoopState& at)
 {
   CheckpointData data;
-  data.set("format_version", 1);
+  data.set("format_version", checkpoint_format);
   data.set("step", at.step);
   data.set("time", at.time);
   data.set("dt", scene_.numerics.dt);
-  data.set("targets.volume", module_.targets().volume);
-  for (int a = 0; a < 3; ++a)
-  {
-    data.set("centre.shift." + std::to_string(a), centre_shift_[a]);
-    data.set("centre.last." + std::to_string(a), last_centre_[a]);
-  }
-  data.set("centre.have_last", have_last_centre_ ? 1 : 0);
-  data.set("targets.area", module_.targets().area);
-  data.set("initial_volume", initial_volume_);
   data.set("mesh.levels", adaptive_.levels());
   for (int level = 0; level < adaptive_.levels(); ++level)
   {
@@ -178,23 +193,15 @@ std::string Simulation::save_checkpoint(const LoopState& at)
     data.arrays["mesh.refined_centroids." + std::to_string(level)] = std::move(all);
   }
   std::string names;
-  for (const auto& [name, f] : module_.fields())
-  {
-    save_field(*f, "field." + name, data);
-    names += (names.empty() ? "" : ",") + name;
-  }
+  for (const auto& name : fields_.names())
+    if (fields_.info(name).checkpointed)
+    {
+      save_field(*fields_.get(name), "field." + name, data);
+      names += (names.empty() ? "" : ",") + name;
+    }
   data.texts["fields"] = names;
-  if (flow_)
-  {
-    // v^n is the flow's only history (p is recomputed each step; kept for the output).
-    save_field(*flow_->velocity(), "flow.v", data);
-    save_field(*flow_->pressure(), "flow.p", data);
-    if (concentration_)
-      save_field(*concentration_->concentration(), "concentration.c", data);
-    // dE/dphi of the L2 Helfrich flows (the next flow step's force) uses them
-    data.set("multipliers.volume", module_.multipliers()[0]);
-    data.set("multipliers.area", module_.multipliers()[1]);
-  }
+  for (const auto& sub : split_)
+    sub->save(data);
   data.texts["model"] = scene::to_string(scene_.phase_field.model);
   data.texts["scene"] = scene_.resolved_yaml;
   data.texts["scene.source"] = scene_.source;
@@ -215,6 +222,10 @@ Simulation::LoopState Simulation::restore()
   }
   try
   {
+    if (data.scalar("format_version") != checkpoint_format)
+      throw CheckpointError(format("it has checkpoint format %g, this cellphase reads format %d "
+                                   "(start the run again)",
+                                   data.scalar("format_version"), checkpoint_format));
     if (data.text("model") != scene::to_string(scene_.phase_field.model))
       throw CheckpointError("it was written by model " + data.text("model") + ", the scene gives "
                             + scene::to_string(scene_.phase_field.model));
@@ -224,56 +235,39 @@ Simulation::LoopState Simulation::restore()
     std::vector<std::vector<double>> history;
     for (int level = 0; level < int(data.scalar("mesh.levels")); ++level)
       history.push_back(data.array("mesh.refined_centroids." + std::to_string(level)));
-    std::shared_ptr<Mesh> mesh;
+    MeshSpaces spaces;
     try
     {
-      mesh = adaptive_.replay(history);
+      spaces.mesh = adaptive_.replay(history);
     }
     catch (const std::runtime_error& e)
     {
       throw CheckpointError(e.what());
     }
-    auto V = create_p2_space(mesh, scene_.domain.dim);
-    FieldMap fields;
-    for (const auto& name : split_names(data.text("fields")))
+    spaces.dim = scene_.domain.dim;
+    const auto stored = split_names(data.text("fields"));
+    fields_.clear_functions();
+    for (const auto& name : fields_.names())
     {
-      auto f = std::make_shared<Function>(V);
-      f->name = name;
+      const FieldInfo& info = fields_.info(name);
+      if (!info.checkpointed)
+        continue;
+      if (std::find(stored.begin(), stored.end(), name) == stored.end())
+        throw CheckpointError("it holds no field " + name + " of the " + owner_of(name)
+                              + " (it was written by a scene without it)");
+      if (info.space == FieldSpace::other)
+        continue; // restored below, into the function its owner builds
+      auto f = std::make_shared<Function>(spaces.of(info.space));
+      f->name = info.label;
       restore_field(data, "field." + name, *f);
-      fields[name] = f;
+      fields_.set(name, f);
     }
-    module_.attach(V, fields);
-    if (flow_)
-    {
-      if (!data.arrays.count("flow.v.block_size"))
-        throw CheckpointError("it was written without flow, the scene has a flow section");
-      auto v = std::make_shared<Function>(create_vector_p2_space(mesh, scene_.domain.dim));
-      restore_field(data, "flow.v", *v);
-      module_.set_multipliers({data.scalar("multipliers.volume"), data.scalar("multipliers.area")});
-      std::shared_ptr<Function> c;
-      if (concentration_)
-      {
-        if (!data.arrays.count("concentration.c.block_size"))
-          throw CheckpointError("it was written without the membrane concentration, the scene "
-                                "has flow.inextensibility.concentration");
-        c = std::make_shared<Function>(V);
-        restore_field(data, "concentration.c", *c);
-      }
-      attach_flow(v, c);
-      restore_field(data, "flow.p", *flow_->pressure());
-    }
-    module_.set_targets({data.scalar("targets.volume"), data.scalar("targets.area")});
-    initial_volume_ = data.scalar("initial_volume");
-    if (data.arrays.count("centre.have_last")) // written since the centre is unwrapped
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        centre_shift_[a] = data.scalar("centre.shift." + std::to_string(a));
-        last_centre_[a] = data.scalar("centre.last." + std::to_string(a));
-      }
-      have_last_centre_ = data.scalar("centre.have_last") != 0;
-    }
-    observables_ = std::make_unique<Observables>(scene_, module_);
+    for (const auto& sub : split_)
+      sub->restore(data);
+    attach_all();
+    for (const auto& name : fields_.names())
+      if (fields_.info(name).checkpointed && fields_.info(name).space == FieldSpace::other)
+        restore_field(data, "field." + name, *fields_.get(name));
     LoopState at{int(data.scalar("step")), data.scalar("time")};
     log("cellphase: restarting from %s (step %d, t = %g)\n", path.c_str(), at.step, at.time);
     return at;
@@ -293,12 +287,19 @@ void Simulation::open_output(const LoopState& start)
     writer_ = make_writer(start);
   int ranks;
   MPI_Comm_size(comm_, &ranks);
+  std::int64_t dofs = 0;
+  int threads = 1;
+  for (const auto& sub : split_)
+  {
+    dofs += sub->num_dofs();
+    if (auto* pf = dynamic_cast<const PhaseFieldSubProblem*>(sub.get()))
+      threads = std::max(threads, pf->threads());
+  }
   log("cellphase: %s, %dD, model %s (%s), %d refinement levels, %lld dofs, %d MPI rank%s, "
       "%d assembly thread%s per rank\n",
       scene_.source.c_str(), scene_.domain.dim, scene::to_string(scene_.phase_field.model),
-      scene::to_string(scene_.numerics.linearisation), adaptive_.levels(),
-      (long long)(module_.num_dofs() + (flow_ ? flow_->num_dofs() : 0)), ranks,
-      ranks > 1 ? "s" : "", module_.threads(), module_.threads() > 1 ? "s" : "");
+      scene::to_string(scene_.numerics.linearisation), adaptive_.levels(), (long long)dofs,
+      ranks, ranks > 1 ? "s" : "", threads, threads > 1 ? "s" : "");
 }
 
 std::unique_ptr<FieldWriter> Simulation::make_writer(const LoopState& start) const
@@ -309,70 +310,95 @@ std::unique_ptr<FieldWriter> Simulation::make_writer(const LoopState& start) con
       restart_ ? std::optional<double>(start.time) : std::nullopt);
 }
 
+FieldMap Simulation::output_fields() const
+{
+  FieldMap out;
+  for (const auto& label : scene_.output.fields)
+  {
+    const std::string name = fields_.by_label(label);
+    if (!name.empty())
+      if (auto f = fields_.find(name))
+        out[label] = f;
+  }
+  return out;
+}
+
 double Simulation::remesh(double& volume_change)
 {
   auto t0 = Clock::now();
-  auto phi = module_.fields().at("phi");
-  auto mesh = adaptive_.build(compat::make_evaluator(phi));
-  auto V = create_p2_space(mesh, scene_.domain.dim);
-  TransferReport report;
-  auto fields = transfer_fields(module_.fields(), V, report);
-  std::shared_ptr<Function> velocity;
-  if (flow_)
+  // Refine around the zero level set of every phase field (one today: max of one).
+  std::vector<std::string> phases;
+  for (const auto& name : fields_.names())
+    if (fields_.info(name).transfer == Transfer::keep_integral)
+      phases.push_back(name);
+  MeshSpaces spaces;
+  spaces.mesh = adaptive_.build(compat::make_evaluator(fields_.get(phases.front())));
+  spaces.dim = scene_.domain.dim;
+
+  std::map<std::string, std::shared_ptr<Function>> moved;
+  volume_change = 0;
+  for (const auto& name : fields_.names())
   {
-    // v^n moves with the fields (interpolated; div v = 0 again after the next flow step).
-    velocity = std::make_shared<Function>(create_vector_p2_space(mesh, scene_.domain.dim));
-    compat::transfer(flow_->velocity(), *velocity);
+    const FieldInfo& info = fields_.info(name);
+    if (info.transfer == Transfer::recompute)
+      continue;
+    auto old = fields_.get(name);
+    auto f = std::make_shared<Function>(spaces.of(info.space));
+    f->name = info.label;
+    compat::transfer(old, *f);
+    if (info.transfer == Transfer::keep_integral)
+    {
+      TransferReport report;
+      restore_integral(old, f, report); // (3.10): the cell volume is kept
+      volume_change = std::max(volume_change, report.volume_change_corrected);
+    }
+    moved[name] = f;
   }
-  std::shared_ptr<Function> concentration;
-  if (concentration_)
-  {
-    concentration = std::make_shared<Function>(V);
-    compat::transfer(concentration_->concentration(), *concentration);
-  }
-  module_.attach(V, fields);
-  attach_flow(velocity, concentration);
-  observables_ = std::make_unique<Observables>(scene_, module_);
-  volume_change = report.volume_change_corrected;
+  fields_.clear_functions();
+  for (auto& [name, f] : moved)
+    fields_.set(name, f);
+  attach_all();
   return seconds_since(t0);
 }
 
 void Simulation::keep_good_state(const LoopState& at)
 {
   good_.at = at;
-  for (const auto& [name, f] : all_fields())
-  {
-    auto x = f->x()->array();
-    good_.values[name].assign(x.begin(), x.end());
-  }
+  for (const auto& name : fields_.names())
+    if (auto f = fields_.find(name))
+    {
+      auto x = f->x()->array();
+      good_.values[name].assign(x.begin(), x.end());
+    }
 }
 
-std::string Simulation::module_name(const std::string& field) const
+std::string Simulation::owner_of(const std::string& field) const
 {
-  if (field == "v" || field == "p" || field == "lambda")
-    return "flow module";
-  if (field == "c")
-    return "membrane concentration module (3.70)";
-  return std::string("phase-field module (") + scene::to_string(scene_.phase_field.model) + ")";
+  const std::string& owner = fields_.info(field).owner;
+  for (const auto& sub : split_)
+    if (sub->name() == owner)
+      return sub->description();
+  return owner;
 }
 
 void Simulation::fail(const LoopState& at, const std::string& module, const std::string& what)
 {
   // Back to the fields at the start of the failed step (same mesh: remeshing happens
   // before a step), then save them as a checkpoint and as output.
-  for (const auto& [name, f] : all_fields())
-  {
-    auto x = f->x()->mutable_array();
-    const auto& good = good_.values.at(name);
-    std::copy(good.begin(), good.end(), x.begin());
-  }
+  for (const auto& name : fields_.names())
+    if (auto f = fields_.find(name))
+    {
+      auto x = f->x()->mutable_array();
+      const auto& good = good_.values.at(name);
+      std::copy(good.begin(), good.end(), x.begin());
+    }
   std::string saved;
   try
   {
     saved = save_checkpoint(good_.at);
     if (!writer_)
       writer_ = make_writer(good_.at);
-    writer_->write(all_fields(), good_.at.time, good_.at.step);
+    writer_->write(output_fields(), good_.at.time, good_.at.step);
     saved += " and " + writer_->index_path();
   }
   catch (const std::exception& e)
@@ -386,86 +412,49 @@ void Simulation::fail(const LoopState& at, const std::string& module, const std:
       good_.at.step, good_.at.time, saved.c_str()));
 }
 
-void Simulation::check_health(const LoopState& at, const ObservableValues& v)
+void Simulation::check_health(const LoopState& at, const Observation& row)
 {
-  for (const auto& [name, f] : all_fields())
+  for (const auto& name : fields_.names())
   {
+    auto f = fields_.find(name);
     int bad = 0;
-    for (double x : f->x()->array())
-      bad |= !std::isfinite(x);
+    if (f)
+      for (double x : f->x()->array())
+        bad |= !std::isfinite(x);
     MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm_);
     if (bad)
-      fail(at, module_name(name), "field " + name + " is not finite (NaN or Inf)");
+      fail(at, owner_of(name), "field " + fields_.info(name).label + " is not finite (NaN or Inf)");
   }
-  const auto& limits = scene_.numerics.limits;
-  const double phi_abs = std::max(-v.phi_min, v.phi_max);
-  if (phi_abs > limits.phi_bound)
-    fail(at, module_name("phi"), format("field phi reaches %.4g, beyond the bound +-%g (numerics.limits.phi_bound); "
-                    "the time step may be too large",
-                    v.phi_max > -v.phi_min ? v.phi_max : v.phi_min, limits.phi_bound));
-  if (limits.volume_drift && initial_volume_ != 0)
+  for (const auto* sub : attach_order_)
   {
-    const double drift = std::abs(v.volume - initial_volume_) / std::abs(initial_volume_);
-    if (drift > *limits.volume_drift)
-      fail(at, module_name("phi"), format("the cell volume drifted by %.3g (relative) from %.6g to %.6g, beyond "
-                      "numerics.limits.volume_drift = %g",
-                      drift, initial_volume_, v.volume, *limits.volume_drift));
+    const std::string problem = sub->health(row);
+    if (!problem.empty())
+      fail(at, sub->description(), problem);
   }
-}
-
-void Simulation::unwrap_centre(std::array<double, 3>& centre)
-{
-  const auto& d = scene_.domain;
-  for (int a : d.periodic)
-  {
-    // The centre moves less than half a period per step; a larger jump is a crossing.
-    const double period = d.upper[a] - d.lower[a];
-    double c = centre[a] + centre_shift_[a];
-    if (have_last_centre_)
-    {
-      const double periods = std::round((last_centre_[a] - c) / period);
-      centre_shift_[a] += periods * period;
-      c += periods * period;
-    }
-    centre[a] = c;
-  }
-  last_centre_ = centre;
-  have_last_centre_ = true;
 }
 
 void Simulation::record(const LoopState& at, const StepTimings& timings, double remesh_time,
                         double volume_change)
 {
+  Observation row;
+  for (auto* sub : attach_order_)
+    sub->observe(row);
+  check_health(at, row);
   StepRecord r;
   r.step = at.step;
   r.time = at.time;
-  r.values = observables_->evaluate();
-  unwrap_centre(r.values.center);
-  if (flow_)
-  {
-    const FlowObservables f = flow_->observables();
-    auto& v = r.values;
-    v.kinetic_energy = scene::flow_reynolds(scene_) * f.kinetic_energy; // (3.12)
-    v.cell_velocity = f.cell_velocity;
-    v.tension_mean = f.tension_mean;
-    // Cahn-Hilliard: the interface energy is (1/Ca) E_CH (3.13); Helfrich: the model's own.
-    const double interface = scene_.phase_field.model == scene::Model::cahn_hilliard
-                                 ? scene::flow_capillary(scene_) * v.energy_ch
-                                 : v.total_energy;
-    v.total_with_kinetic = v.kinetic_energy + interface;
-  }
-  else
-    r.values.total_with_kinetic = r.values.total_energy;
-  check_health(at, r.values);
-  r.dofs = module_.num_dofs() + (flow_ ? flow_->num_dofs() : 0);
-  r.lam_v = module_.multipliers()[0];
-  r.lam_a = module_.multipliers()[1];
+  r.values = row.values;
+  r.extra = row.extra;
+  for (const auto& sub : split_)
+    r.dofs += sub->num_dofs();
+  r.lam_v = row.lam_v;
+  r.lam_a = row.lam_a;
   r.timings = timings;
   r.remesh_time = remesh_time;
   r.remesh_volume_change = volume_change;
   auto t0 = Clock::now();
   if (writer_ && (at.step % scene_.output.every == 0 || at.step == last_step_))
-    writer_->write(all_fields(), at.time, at.step);
+    writer_->write(output_fields(), at.time, at.step);
   r.output_time = seconds_since(t0);
   csv_->write(r);
 }
@@ -505,7 +494,7 @@ void Simulation::run()
     }
     catch (const SolverError& e)
     {
-      fail({n, at.time + dt}, module_name(solving_), e.what());
+      fail({n, at.time + dt}, solving_ ? solving_->description() : "time loop", e.what());
     }
     at = {n, n == steps ? nu.end_time : at.time + dt};
     record(at, timings, remesh_time, volume_change);
@@ -529,9 +518,10 @@ void Simulation::run()
     }
   }
   progress.finish(steps, at.time);
-  log("  %d factorisations; observables in %s/observables.csv%s\n",
-      module_.factorisations() + (flow_ ? flow_->factorisations() : 0),
-      scene_.output.directory.c_str(),
-      writer_ ? ", fields in fields.xdmf" : "");
+  int factorisations = 0;
+  for (const auto& sub : split_)
+    factorisations += sub->factorisations();
+  log("  %d factorisations; observables in %s/observables.csv%s\n", factorisations,
+      scene_.output.directory.c_str(), writer_ ? ", fields in fields.xdmf" : "");
 }
 } // namespace cellphase

@@ -17,7 +17,7 @@ const char* header = "time,step,volume,surface,helfrich_energy,total_energy,ener
                      "kinetic_energy,total_energy_kinetic,cell_velocity_x,cell_velocity_y,"
                      "cell_velocity_z,rise_velocity,inclination_deg,wall_flow,"
                      // the membrane's local stretching; the mean multiplier of (3.67)
-                     "stretch_min,stretch_max,tension_mean\n";
+                     "stretch_min,stretch_max,tension_mean";
 
 /// Rows of an existing file up to `step` (complete lines only: a killed run may have left
 /// half a row), written back atomically. Returns false if there is no such file.
@@ -55,8 +55,7 @@ ObservablesCsv::ObservablesCsv(const std::string& path, int dim, MPI_Comm comm,
   file_ = std::fopen(path.c_str(), resume ? "a" : "w");
   if (!file_)
     throw std::runtime_error("cannot write '" + path + "'");
-  if (!resume)
-    std::fputs(header, file_);
+  header_due_ = !resume;
 }
 
 ObservablesCsv::~ObservablesCsv()
@@ -69,11 +68,19 @@ void ObservablesCsv::write(const StepRecord& r)
 {
   if (!file_)
     return;
+  if (header_due_)
+  {
+    std::fputs(header, file_);
+    for (const auto& [name, value] : r.extra)
+      std::fprintf(file_, ",%s", name.c_str());
+    std::fputs("\n", file_);
+    header_due_ = false;
+  }
   const auto& v = r.values;
   std::fprintf(file_,
                "%.10g,%d,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.10g,"
                "%.10g,%.10g,%lld,%.3e,%.4g,%.4g,%.4g,%.4g,%.4g,"
-               "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.4g,%.10g,%.10g,%.10g\n",
+               "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.4g,%.10g,%.10g,%.10g",
                r.time, r.step, v.volume, v.surface, v.helfrich, v.total_energy, v.energy_ch,
                v.center[0], v.center[1], dim_ == 3 ? v.center[2] : 0.0, v.circularity,
                v.phi_min, v.phi_max, r.lam_v, r.lam_a, (long long)r.dofs,
@@ -82,6 +89,9 @@ void ObservablesCsv::write(const StepRecord& r)
                v.cell_velocity[0], v.cell_velocity[1], dim_ == 3 ? v.cell_velocity[2] : 0.0,
                v.cell_velocity[1], v.inclination_deg, r.timings.flow, v.stretch_min, v.stretch_max,
                v.tension_mean);
+  for (const auto& [name, value] : r.extra)
+    std::fprintf(file_, ",%.15g", value);
+  std::fputs("\n", file_);
   std::fflush(file_);
 }
 } // namespace cellphase

@@ -4,6 +4,8 @@
 #include "physics/Observables.h"
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace cellphase
 {
@@ -17,6 +19,9 @@ struct StepRecord
   StepTimings timings;
   double remesh_time = 0, output_time = 0;
   double remesh_volume_change = 0; ///< relative, after correction (0 if no remesh this step)
+  /// Columns of the sub-problems beyond the standard ones, appended in this order (the
+  /// same names in every row).
+  std::vector<std::pair<std::string, double>> extra;
 };
 
 class ObservablesCsv
@@ -31,5 +36,6 @@ public:
 private:
   std::FILE* file_ = nullptr;
   int dim_;
+  bool header_due_ = false; ///< the header (with the extra columns) precedes the first row
 };
 } // namespace cellphase

@@ -33,12 +33,17 @@ FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, Transfer
     compat::transfer(f, *g);
     fields[name] = g;
   }
-  auto phi_old = old.at("phi");
-  auto phi = fields.at("phi");
+  restore_integral(old.at("phi"), fields.at("phi"), report);
+  return fields;
+}
+
+void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<Function> phi,
+                      TransferReport& report)
+{
   const double int_old = integral_of(phi_old), int_new = integral_of(phi);
 
   // The correction shape (1 - phi^2) at the P2 nodes is its own P2 interpolant.
-  auto shape = std::make_shared<Function>(V);
+  auto shape = std::make_shared<Function>(phi->function_space());
   {
     auto p = phi->x()->array();
     auto s = shape->x()->mutable_array();
@@ -56,13 +61,12 @@ FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, Transfer
   }
   // Relative to the cell volume int (phi+1)/2 = (int phi + |Omega|)/2.
   const double omega = [&] {
-    auto one = std::make_shared<Function>(V);
+    auto one = std::make_shared<Function>(phi->function_space());
     one->x()->set(1.0);
     return integral_of(one);
   }();
   const double cell_volume = (int_old + omega) / 2;
   report.volume_change_interpolated = std::abs(int_new - int_old) / 2 / cell_volume;
   report.volume_change_corrected = std::abs(integral_of(phi) - int_old) / 2 / cell_volume;
-  return fields;
 }
 } // namespace cellphase

@@ -21,6 +21,11 @@ std::shared_ptr<Space> create_vector_p2_space(std::shared_ptr<const Mesh> mesh, 
 /// the old one: the correction acts only in the interface and keeps phi = -1 outside.
 FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, TransferReport& report);
 
+/// After phi was interpolated from phi_old: add c (1 - phi^2) so that int phi equals
+/// int phi_old (the correction acts only in the interface); fills the report.
+void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<Function> phi,
+                      TransferReport& report);
+
 /// int phi dx of a P2 field.
 double integral_of(std::shared_ptr<const Function> f);
 } // namespace cellphase

@@ -2,6 +2,7 @@
 // scene's model (section 2.5 and 3.4.1), solved as one monolithic P2 system per step.
 #pragma once
 #include "compat/Dolfinx.h"
+#include "core/StepTimings.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
 #include "compat/Periodic.h"
@@ -17,12 +18,6 @@ namespace cellphase
 /// Standalone P2 fields by name ("phi", "mu", "w"), all on one space.
 using FieldMap = std::map<std::string, std::shared_ptr<Function>>;
 
-/// Wall time of the parts of one step, in seconds.
-struct StepTimings
-{
-  double assemble = 0, factorise = 0, solve = 0;
-  double flow = 0; ///< the flow's part of the three above (coupled runs)
-};
 
 /// Targets of the constraints, fixed at the start: V0 = int phi (3.10), A0 = E_CH (3.11).
 struct ConstraintTargets

@@ -1,5 +1,6 @@
 #include "scene/Check.h"
 #include "scene/Geometry.h"
+#include "scene/Plan.h"
 #include "scene/Resolution.h"
 #include "scene/Sections.h"
 #include "scene/Units.h"
@@ -229,6 +230,9 @@ std::string check_report(const Scene& s)
     flow_report(s, r);
   else
     r.line("flow", "none (phase field only)");
+
+  r.out_ << "  operator split" << (s.numerics.split ? " (numerics.split)" : " (the thesis' order)")
+         << ", one step:\n" << plan_text(make_plan(s));
 
   const double eps = s.numerics.epsilon;
   const int levels = required_levels(s);

@@ -35,7 +35,7 @@ void read_numerics(const Section& top, Scene& s)
                          "numerics.end_time");
   const Section n = top.section("numerics");
   n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "limits",
-                "petsc"});
+                "petsc", "split"});
   Numerics& num = s.numerics;
   num.epsilon = n.number("epsilon", positive());
   num.dt = n.number("dt", positive());
@@ -59,6 +59,8 @@ void read_numerics(const Section& top, Scene& s)
   read_mesh(n.section("mesh"), num.mesh);
   read_limits(n.section("limits"), s.phase_field.model, num.limits);
   read_petsc_options(n.section("petsc"), num.petsc);
+  if (n.has("split"))
+    num.split = n.strings("split"); // checked against the plan in check_split
 }
 
 } // namespace cellphase::scene

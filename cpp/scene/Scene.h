@@ -113,6 +113,8 @@ struct Numerics
   Mesh mesh;
   Limits limits;
   std::map<std::string, std::string> petsc; ///< options without the leading '-' and prefix
+  /// Order of the operator split by sub-problem name (scene/Plan.h); absent: the thesis'.
+  std::optional<std::vector<std::string>> split;
 };
 
 struct Checkpoints

@@ -69,6 +69,7 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
     read_flow(top, s);
     read_output(top, s);
     check_geometry(top, s);
+    check_split(top, s);
     return s;
   }
   catch (const SceneError&)

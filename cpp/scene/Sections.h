@@ -23,4 +23,7 @@ void read_petsc_options(const yaml::Section& p, std::map<std::string, std::strin
 std::string cell_label(std::size_t i, const Cell& c);
 /// Checks across sections: cells inside the domain and disjoint, mesh resolution reachable.
 void check_geometry(const yaml::Section& top, const Scene& s);
+/// numerics.split: names of the scene's sub-problems, each once, and a plan whose every
+/// read field is written by a listed sub-problem or is initial data (scene/Plan.h).
+void check_split(const yaml::Section& top, const Scene& s);
 } // namespace cellphase::scene

@@ -1,0 +1,63 @@
+#include "core/FieldRegistry.h"
+#include <stdexcept>
+
+namespace cellphase
+{
+void FieldRegistry::declare(const FieldInfo& info)
+{
+  if (info_.count(info.name))
+    throw std::logic_error("field " + info.name + " is declared twice (by " + info.owner
+                           + " and " + info_.at(info.name).owner + ")");
+  if (!by_label(info.label).empty())
+    throw std::logic_error("output label " + info.label + " of " + info.name
+                           + " is already used by " + by_label(info.label));
+  info_[info.name] = info;
+  order_.push_back(info.name);
+}
+
+void FieldRegistry::set(const std::string& name, std::shared_ptr<Function> f)
+{
+  if (!info_.count(name))
+    throw std::logic_error("field " + name + " is set but was never declared");
+  functions_[name] = std::move(f);
+}
+
+std::shared_ptr<Function> FieldRegistry::get(const std::string& name) const
+{
+  auto f = find(name);
+  if (!f)
+    throw std::out_of_range("field " + name + (declared(name) ? " has no value yet"
+                                                              : " is not declared by any sub-problem"));
+  return f;
+}
+
+std::shared_ptr<Function> FieldRegistry::find(const std::string& name) const
+{
+  auto it = functions_.find(name);
+  return it == functions_.end() ? nullptr : it->second;
+}
+
+const FieldInfo& FieldRegistry::info(const std::string& name) const
+{
+  auto it = info_.find(name);
+  if (it == info_.end())
+    throw std::out_of_range("field " + name + " is not declared by any sub-problem");
+  return it->second;
+}
+
+std::string FieldRegistry::by_label(const std::string& label) const
+{
+  for (const auto& name : order_)
+    if (info_.at(name).label == label)
+      return name;
+  return "";
+}
+
+double FieldRegistry::scalar(const std::string& name) const
+{
+  auto it = scalars_.find(name);
+  if (it == scalars_.end())
+    throw std::out_of_range("scalar " + name + " is not published by any sub-problem");
+  return it->second;
+}
+} // namespace cellphase

@@ -1,0 +1,117 @@
+#include "scene/Plan.h"
+#include <algorithm>
+#include <map>
+
+namespace cellphase::scene
+{
+namespace
+{
+bool advected(Model m) { return m != Model::allen_cahn && m != Model::allen_cahn_volume; }
+
+bool has_membrane_union(const Scene& s) { return s.flow && s.flow->inextensibility.has_value(); }
+
+bool has_concentration(const Scene& s)
+{
+  return has_membrane_union(s) && s.flow->inextensibility->concentration.has_value();
+}
+
+std::vector<std::string> qualified(const std::string& group, const std::vector<std::string>& f)
+{
+  std::vector<std::string> out;
+  for (const auto& name : f)
+    out.push_back(group + "." + name);
+  return out;
+}
+
+/// Every step the scene could have, by name.
+std::map<std::string, PlanStep> available_steps(const Scene& s)
+{
+  std::map<std::string, PlanStep> steps;
+  const Model m = s.phase_field.model;
+  PlanStep pf{"phase_field", std::string("phase-field module (") + to_string(m) + ")", {},
+              qualified("cell", model_fields(m))};
+  if (s.flow)
+  {
+    pf.writes.push_back("cell.potential"); // dE/dphi, the interface force's potential
+    if (advected(m))
+      pf.reads.push_back("flow.v");
+  }
+  steps[pf.name] = pf;
+  if (has_membrane_union(s))
+    steps["membrane"] = {"membrane", "membrane union module (phi_cells = max_i phi_i, 7.14)",
+                         {"cell.phi"}, {"membrane.phi_cells"}};
+  if (s.flow)
+  {
+    PlanStep flow{"flow",
+                  s.flow->inextensibility ? "flow module (with inextensibility, 3.67-3.68)"
+                                          : "flow module",
+                  {"cell.phi", "cell.potential"},
+                  {"flow.v", "flow.p"}};
+    if (has_membrane_union(s))
+    {
+      flow.reads.push_back("membrane.phi_cells");
+      flow.writes.push_back("flow.lambda");
+    }
+    if (has_concentration(s))
+      flow.reads.push_back("membrane.c");
+    steps[flow.name] = flow;
+  }
+  if (has_concentration(s))
+    steps["concentration"] = {"concentration", "membrane concentration module (3.70)",
+                              {"membrane.phi_cells", "flow.v"}, {"membrane.c"}};
+  return steps;
+}
+} // namespace
+
+std::vector<std::string> default_split(const Scene& s)
+{
+  std::vector<std::string> order;
+  for (const char* name : {"membrane", "flow", "phase_field", "concentration"})
+    if (available_steps(s).count(name))
+      order.push_back(name);
+  return order;
+}
+
+Plan make_plan(const Scene& s)
+{
+  const auto steps = available_steps(s);
+  Plan plan;
+  for (const auto& name : s.numerics.split ? *s.numerics.split : default_split(s))
+    plan.steps.push_back(steps.at(name));
+  plan.initial = {"cell.phi"};
+  return plan;
+}
+
+std::string plan_problem(const Plan& plan)
+{
+  for (const auto& step : plan.steps)
+    for (const auto& field : step.reads)
+    {
+      const bool initial = std::count(plan.initial.begin(), plan.initial.end(), field) > 0;
+      const bool written = std::any_of(plan.steps.begin(), plan.steps.end(), [&](const PlanStep& p)
+                                       { return std::count(p.writes.begin(), p.writes.end(), field) > 0; });
+      if (!initial && !written)
+        return step.name + " reads " + field + ", which no sub-problem of the split writes and "
+               + "the scene gives no initial value for";
+    }
+  return "";
+}
+
+std::string plan_text(const Plan& plan)
+{
+  auto list = [](const std::vector<std::string>& v)
+  {
+    std::string s;
+    for (const auto& x : v)
+      s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? std::string("-") : s;
+  };
+  std::string text;
+  int i = 1;
+  for (const auto& step : plan.steps)
+    text += "  " + std::to_string(i++) + ". " + step.name + ": " + step.description
+            + "\n       reads " + list(step.reads) + "; writes " + list(step.writes) + "\n";
+  text += "  initial data: " + list(plan.initial) + "\n";
+  return text;
+}
+} // namespace cellphase::scene

@@ -1,0 +1,36 @@
+// The operator split of a scene as data: which sub-problems it builds, in which order they
+// step, and the fields each reads and writes (qualified names, see core/FieldRegistry.h).
+// Plain C++ (no DOLFINx), so that `cellphase check` prints and verifies it; the time loop
+// builds exactly these sub-problems.
+#pragma once
+#include "scene/Scene.h"
+#include <string>
+#include <vector>
+
+namespace cellphase::scene
+{
+struct PlanStep
+{
+  std::string name;        ///< as in numerics.split: "flow", "phase_field", ...
+  std::string description; ///< for messages and the plan: "flow (Navier-Stokes, 2.47-2.57)"
+  std::vector<std::string> reads, writes;
+};
+
+struct Plan
+{
+  std::vector<PlanStep> steps;      ///< in the order of the split
+  std::vector<std::string> initial; ///< fields the scene gives initial values for
+};
+
+/// Sub-problems the scene needs, in the thesis' order (section 5.3: the membrane union,
+/// then the flow with phi^n, the phase field with v^{n+1}, the membrane concentration), or
+/// in the order of numerics.split. Does not verify it (see plan_problem).
+Plan make_plan(const Scene& s);
+/// The names make_plan would use without numerics.split.
+std::vector<std::string> default_split(const Scene& s);
+/// "" if every field a step reads is written by a step of the plan or is initial data;
+/// else the problem, naming the step and the field.
+std::string plan_problem(const Plan& plan);
+/// The plan as indented lines for `cellphase check`.
+std::string plan_text(const Plan& plan);
+} // namespace cellphase::scene
