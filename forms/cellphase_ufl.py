@@ -84,3 +84,45 @@ def kappa_of(phi, mu, H0):
 # Quadrature degree for the nonlinear terms: the automatic estimate (P2 to the 4th power and
 # more) costs much assembly time and buys no accuracy over the interpolation error.
 QDEG = 6
+
+
+# Interaction between cells, section 7.1.2. B(phi) = (phi^2 - 1)^2 / eps lives in the
+# diffuse interface of a cell; the interaction function of a cell is a function of the
+# signed distance d = -(eps/sqrt2) ln((1 + phi)/(1 - phi)) to its membrane, computed from
+# its phase field (7.3) instead of a distance computation. The Lennard-Jones-like w-bar of
+# Fig. 7.7 (r1, r2: repulsion strength and range; a1, a2, a3: adhesion strength, position
+# and range) is the Gaussian w of (7.2) for r1 = r2 = 1, a1 = 0. Zero where |phi| >= 1.
+# cpp/physics/InteractionFunction.h evaluates the same functions at the nodes.
+def B_of(phi, eps):
+    return (phi**2 - 1)**2 / eps
+
+
+def dB_of(phi, eps):
+    return 4 * phi * (phi**2 - 1) / eps
+
+
+def _inside_band(phi):
+    from ufl import conditional, lt
+    return lambda value: conditional(lt(abs(phi), 1 - 1e-12), value, 0.0)
+
+
+def _distance(phi, eps):
+    from ufl import ln, max_value, min_value, sqrt
+    p = max_value(min_value(phi, 1 - 1e-12), -1 + 1e-12)
+    return -eps / sqrt(2.0) * ln((1 + p) / (1 - p)), p
+
+
+def interaction_w(phi, eps, r1, r2, a1, a2, a3):
+    from ufl import exp
+    d, _ = _distance(phi, eps)
+    w = r1 * exp(-d**2 / (r2 * eps**2)) - a1 * exp(-(d - a2 * eps)**2 / (a3 * eps**2))
+    return _inside_band(phi)(w)
+
+
+def interaction_dw(phi, eps, r1, r2, a1, a2, a3):
+    """d w / d phi = (d w / d d) (d d / d phi), d d / d phi = -(eps / sqrt2) 2 / (1 - phi^2)."""
+    from ufl import exp, sqrt
+    d, p = _distance(phi, eps)
+    dw_dd = (-2 * d / (r2 * eps**2) * r1 * exp(-d**2 / (r2 * eps**2))
+             + 2 * (d - a2 * eps) / (a3 * eps**2) * a1 * exp(-(d - a2 * eps)**2 / (a3 * eps**2)))
+    return _inside_band(phi)(dw_dd * (-eps / sqrt(2.0)) * 2 / (1 - p**2))

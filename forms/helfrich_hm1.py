@@ -51,4 +51,13 @@ phi_init = Coefficient(V)
 a_mu = m * q * dx
 L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q) * dxq
 
-forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu]
+# Interaction with the other cells, (7.11) with one interaction number In: an explicit
+# source in the equation of w = phi^natural (7.7), from the sums over the other cells
+# w_sum = sum_j w_j and B_sum = sum_j B(phi_j) (P2 fields at t^n, cpp/physics/Interaction).
+from cellphase_ufl import dB_of, interaction_dw  # noqa: E402
+w_sum, B_sum = Coefficient(V), Coefficient(V)
+In_inv, r1, r2, a1, a2, a3 = constants("In_inv", "r1", "r2", "a1", "a2", "a3")
+load_int = In_inv * (dB_of(phi0, eps) * w_sum
+                     + interaction_dw(phi0, eps, r1, r2, a1, a2, a3) * B_sum) * zeta * dxq
+
+forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int]

@@ -54,7 +54,12 @@ band = conditional(lt(abs(phi), 0.5), 1.0, 0.0)
 stretch = sqrt(2.0) * eps * sqrt(inner(grad(phi), grad(phi))) / (1 - phi**2)
 stretch_sum = band * stretch * z * dxq
 stretch_weight = band * z * dxq
-forms = [com_cos_0, com_cos_1, com_sin_0, com_sin_1, com_open_0, com_open_1, stretch_sum, stretch_weight, volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1,
+# Interaction energy of one cell with the others, its term of (7.5): int B(phi) w_sum / In
+# (w_sum = sum_j w_j, a P2 field; 1/In applied in C++).
+from cellphase_ufl import B_of  # noqa: E402
+w_sum = Coefficient(FunctionSpace(domain, P2))
+interaction_energy = B_of(phi, eps) * w_sum * dxq
+forms = [interaction_energy, com_cos_0, com_cos_1, com_sin_0, com_sin_1, com_open_0, com_open_1, stretch_sum, stretch_weight, volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1,
          moment_xx, moment_xy, moment_yy]
 if DIM == 3:
     com_2 = com[2]

@@ -78,7 +78,8 @@ Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart,
 void Simulation::check_plan() const
 {
   // The declarations must be the plan's lists, and every read field someone's or initial.
-  std::set<std::string> written{"cell.phi"};
+  const auto initial = scene::make_plan(scene_).initial;
+  std::set<std::string> written(initial.begin(), initial.end());
   for (const auto& sub : split_)
     for (const auto& f : sub->writes())
     {
@@ -103,7 +104,8 @@ void Simulation::check_plan() const
 void Simulation::order_attach()
 {
   // Topological order of attach_reads -> owners (a cycle is a programming error).
-  std::set<std::string> ready{"cell.phi"}; // initial data
+  const auto initial = scene::make_plan(scene_).initial;
+  std::set<std::string> ready(initial.begin(), initial.end());
   std::vector<SubProblem*> pending;
   for (auto& s : split_)
     pending.push_back(s.get());
@@ -166,9 +168,15 @@ Simulation::LoopState Simulation::initialise()
       values[i] = initial(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
   };
   auto mesh = adaptive_.build(analytic);
-  auto phi = std::make_shared<Function>(create_p2_space(mesh, scene_.domain.dim));
-  compat::interpolate(*phi, [&initial](double x, double y, double z) { return initial(x, y, z); });
-  fields_.set("cell.phi", phi);
+  auto V = create_p2_space(mesh, scene_.domain.dim);
+  for (const auto& group : scene::cell_groups(scene_))
+  {
+    // Each phase field from its own cells, (7.3).
+    scene::InitialPhaseField own(scene::group_scene(scene_, group));
+    auto phi = std::make_shared<Function>(V);
+    compat::interpolate(*phi, [&own](double x, double y, double z) { return own(x, y, z); });
+    fields_.set(group.prefix + ".phi", phi);
+  }
   attach_all(); // the other fields start from their owners' defaults (fluid at rest)
   for (auto* sub : attach_order_)
     sub->start();
@@ -315,10 +323,15 @@ FieldMap Simulation::output_fields() const
   FieldMap out;
   for (const auto& label : scene_.output.fields)
   {
-    const std::string name = fields_.by_label(label);
-    if (!name.empty())
-      if (auto f = fields_.find(name))
-        out[label] = f;
+    // "phi" is the field labelled phi, or with several cells every phi_<group>.
+    const std::string exact = fields_.by_label(label);
+    for (const auto& name : fields_.names())
+    {
+      const std::string& l = fields_.info(name).label;
+      if (exact.empty() ? l.rfind(label + "_", 0) == 0 : name == exact)
+        if (auto f = fields_.find(name))
+          out[l] = f;
+    }
   }
   return out;
 }
@@ -326,13 +339,26 @@ FieldMap Simulation::output_fields() const
 double Simulation::remesh(double& volume_change)
 {
   auto t0 = Clock::now();
-  // Refine around the zero level set of every phase field (one today: max of one).
-  std::vector<std::string> phases;
+  // Refine around the zero level set of every phase field: max_i phi_i.
+  std::vector<PointEvaluator> phases;
   for (const auto& name : fields_.names())
     if (fields_.info(name).transfer == Transfer::keep_integral)
-      phases.push_back(name);
+      phases.push_back(compat::make_evaluator(fields_.get(name)));
+  PointEvaluator all = phases.front();
+  if (phases.size() > 1)
+    all = [&phases](std::span<const double> pts, std::span<double> values)
+    {
+      phases[0](pts, values);
+      std::vector<double> other(values.size());
+      for (std::size_t k = 1; k < phases.size(); ++k)
+      {
+        phases[k](pts, other);
+        for (std::size_t i = 0; i < values.size(); ++i)
+          values[i] = std::max(values[i], other[i]);
+      }
+    };
   MeshSpaces spaces;
-  spaces.mesh = adaptive_.build(compat::make_evaluator(fields_.get(phases.front())));
+  spaces.mesh = adaptive_.build(all);
   spaces.dim = scene_.domain.dim;
 
   std::map<std::string, std::shared_ptr<Function>> moved;

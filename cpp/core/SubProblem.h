@@ -20,7 +20,8 @@ namespace cellphase
 struct Observation
 {
   ObservableValues values;
-  double lam_v = 0, lam_a = 0; ///< multipliers of the phase field's constraints
+  double lam_v = 0, lam_a = 0; ///< multipliers of the (first) phase field's constraints
+  int phase_fields = 0;        ///< phase fields that observed so far
   std::vector<std::pair<std::string, double>> extra;
 };
 

@@ -132,7 +132,9 @@ void FieldWriter::write_mesh(std::shared_ptr<const Mesh> mesh, int step)
 
 void FieldWriter::write(const FieldMap& fields, double time, int step)
 {
-  auto mesh = fields.at("phi")->function_space()->mesh();
+  if (fields.empty())
+    return;
+  auto mesh = fields.begin()->second->function_space()->mesh(); // all fields share it
   // A failed run writes its last good state, which may be the one written last.
   if (mesh == source_mesh_ && last_time_ && *last_time_ == time)
     return;

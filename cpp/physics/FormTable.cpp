@@ -54,6 +54,7 @@ namespace cellphase
   case scene::Model::helfrich_hm1:                                                              \
     CELLPHASE_SYSTEM(helfrich_hm1, D)                                                           \
     f.load_a = form_helfrich_hm1_##D##_load_a;                                                  \
+    f.load_int = form_helfrich_hm1_##D##_load_int;                                              \
     CELLPHASE_MU_PROJECTION(helfrich_hm1, D)                                                    \
     f.advected = true;                                                                          \
     break;                                                                                      \
@@ -78,6 +79,7 @@ ObservableForms observable_forms(int dim)
   ObservableForms f;
 #define CELLPHASE_OBSERVABLES(D)                                                                \
   f.phi_integral = form_observables_##D##_phi_integral;                                         \
+  f.interaction_energy = form_observables_##D##_interaction_energy;                             \
   f.cell_volume = form_observables_##D##_cell_volume;                                           \
   f.energy_ch = form_observables_##D##_energy_ch;                                               \
   f.helfrich_mu = form_observables_##D##_helfrich_mu;                                           \

@@ -25,12 +25,15 @@ struct ModelForms
   ufcx_form* dW_integral = nullptr;  ///< (2.27), allen_cahn
   ufcx_form* load_v = nullptr;       ///< unit loads of the volume and area multipliers or
   ufcx_form* load_a = nullptr;       ///< penalties, evaluated at t^{n+1} (Helfrich models)
+  /// Explicit interaction source of (7.11) (helfrich_hm1; coefficients u0, w_sum, B_sum)
+  ufcx_form* load_int = nullptr;
 };
 
 /// Functionals of forms/observables.py on the standalone P2 fields phi and mu.
 struct ObservableForms
 {
   ufcx_form* phi_integral = nullptr;
+  ufcx_form* interaction_energy = nullptr; ///< int B(phi) w_sum, a cell's term of (7.5)
   ufcx_form* cell_volume = nullptr;
   ufcx_form* energy_ch = nullptr;
   ufcx_form* helfrich_mu = nullptr;

@@ -107,6 +107,7 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
   }
 
   u0_ = std::make_shared<Function>(W_);
+  load_int_.reset(); // built again on this mesh by set_interaction
   dE_.reset();
   velocity_.reset();
   flowing_ = false;
@@ -182,6 +183,20 @@ void PhaseFieldModule::update_interface_potential()
   fem::assemble_vector(b.mutable_array(), *dE_rhs_);
   b.scatter_rev(std::plus<T>());
   dE_solver_->solve(b, *dE_->x(), "the projection of dE/dphi (3.84)");
+}
+
+void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
+                                       std::shared_ptr<const Function> B_sum,
+                                       const ConstantMap& parameters)
+{
+  if (!forms_.load_int)
+    throw std::logic_error(std::string("model ") + scene::to_string(scene_.phase_field.model)
+                           + " has no interaction term");
+  ConstantMap constants = constants_;
+  constants.insert(parameters.begin(), parameters.end());
+  load_int_ = compat::create_form(*forms_.load_int, {W_},
+                                  {{"u0", u0_}, {"w_sum", w_sum}, {"B_sum", B_sum}}, constants);
+  int_b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
 }
 
 void PhaseFieldModule::set_velocity(std::shared_ptr<const Function> v)
@@ -339,6 +354,15 @@ void PhaseFieldModule::assemble_right_hand_sides(std::vector<const la::Vector<T>
                                     periodic_->assemble_local(*load->b, *load->form);
                                 });
   periodic_->assemble_local(*b_, *L_, lifting_.get());
+  if (load_int_)
+  {
+    // Explicit in phi^n: added to the step's right-hand side before the ghost exchange.
+    periodic_->assemble_local(*int_b_, *load_int_);
+    auto b = b_->mutable_array();
+    auto extra = int_b_->array();
+    for (std::size_t i = 0; i < b.size(); ++i)
+      b[i] += extra[i];
+  }
   local_loads.get();
   periodic_->finish(*b_, bcs_, 1.0);
   // Unit loads are homogeneous at Dirichlet rows (scale 0): phi^{n+1} keeps its BC value.

@@ -49,6 +49,12 @@ public:
   }
   /// The model's forms have the advection term (all but the Allen-Cahn models).
   bool advected() const { return forms_.advected; }
+  /// Interaction with other cells (7.11), helfrich_hm1: the explicit source load_int of
+  /// forms/helfrich_hm1.py from the other cells' sums w_sum, B_sum (P2 on this mesh,
+  /// updated in place before each step) and the constants In_inv, r1, r2, a1, a2, a3.
+  /// Call after every attach.
+  void set_interaction(std::shared_ptr<const Function> w_sum, std::shared_ptr<const Function> B_sum,
+                       const ConstantMap& parameters);
   /// Advance one time step of size dt.
   StepTimings step(double dt);
 
@@ -139,6 +145,8 @@ private:
   /// -A g of the Dirichlet values through the matrix last assembled (reused with it)
   std::unique_ptr<dolfinx::la::Vector<T>> lifting_;
   std::unique_ptr<LinearSolver> solver_; ///< created at the first factorisation on a mesh
+  std::shared_ptr<Form> load_int_;                ///< (7.11), null without interaction
+  std::unique_ptr<dolfinx::la::Vector<T>> int_b_; ///< its vector
   bool matrix_current_ = false; ///< stabilised scheme: matrix assembled and factorised
   ConstantMap constants_;
   std::shared_ptr<Constant> dt_, lam_v_, lam_a_;

@@ -1,4 +1,5 @@
 #include "physics/PhaseFieldSubProblem.h"
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -6,17 +7,19 @@ namespace cellphase
 {
 namespace
 {
-std::string format(const char* fmt, double a, double b, double c = 0, double d = 0)
+template <typename... Args>
+std::string format(const char* fmt, Args... args)
 {
   char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
+  std::snprintf(buf, sizeof buf, fmt, args...);
   return buf;
 }
 } // namespace
 
 PhaseFieldSubProblem::PhaseFieldSubProblem(scene::PlanStep step, const scene::Scene& scene,
-                                           MPI_Comm comm, std::string group)
-    : SubProblem(std::move(step)), scene_(scene), group_(std::move(group)), module_(scene, comm)
+                                           MPI_Comm comm, scene::CellGroup group, int groups)
+    : SubProblem(std::move(step)), group_(std::move(group)), groups_(groups),
+      scene_(scene::group_scene(scene, group_)), module_(scene_, comm)
 {
 }
 
@@ -24,13 +27,13 @@ void PhaseFieldSubProblem::declare(FieldRegistry& fields)
 {
   fields_ = &fields;
   for (const auto& f : scene::model_fields(scene_.phase_field.model))
-    fields.declare({field(f), f, name(), FieldSpace::scalar_p2,
+    fields.declare({field(f), f + group_.label_suffix, name(), FieldSpace::scalar_p2,
                     f == "phi" ? Transfer::keep_integral : Transfer::interpolate, true});
   // dE/dphi for the flow's interface force: mu or w itself, or the projection of (3.84),
   // which is recomputed from phi and mu on every mesh.
   const std::string potential = field("potential");
   if (std::count(writes().begin(), writes().end(), potential))
-    fields.declare({potential, "potential", name(), FieldSpace::scalar_p2, Transfer::recompute,
+    fields.declare({potential, "potential" + group_.label_suffix, name(), FieldSpace::scalar_p2, Transfer::recompute,
                     false});
 }
 
@@ -56,6 +59,15 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
 {
   if (std::count(reads().begin(), reads().end(), "flow.v"))
     module_.set_velocity(fields.get("flow.v"));
+  const std::string sums = "interaction." + group_.name;
+  if (fields.declared(sums + ".w_sum"))
+  {
+    const auto& in = *scene_.interaction;
+    auto c = [](double v) { return std::make_shared<const Constant>(v); };
+    module_.set_interaction(fields.get(sums + ".w_sum"), fields.get(sums + ".B_sum"),
+                            {{"In_inv", c(1 / in.In)}, {"r1", c(in.r1)}, {"r2", c(in.r2)},
+                             {"a1", c(in.a1)}, {"a2", c(in.a2)}, {"a3", c(in.a3)}});
+  }
 }
 
 void PhaseFieldSubProblem::publish_targets()
@@ -96,29 +108,60 @@ void PhaseFieldSubProblem::unwrap_centre(std::array<double, 3>& centre)
 
 void PhaseFieldSubProblem::observe(Observation& row)
 {
-  row.values = observables_->evaluate();
-  unwrap_centre(row.values.center);
-  row.values.total_with_kinetic = row.values.total_energy; // the flow adds its kinetic energy
-  row.lam_v = module_.multipliers()[0];
-  row.lam_a = module_.multipliers()[1];
+  ObservableValues v = observables_->evaluate();
+  unwrap_centre(v.center);
+  last_ = v;
+  if (row.phase_fields++ == 0)
+  {
+    // The standard columns: this phase field's, then sums over the others (below).
+    row.values = v;
+    row.values.total_with_kinetic = v.total_energy; // the flow adds its kinetic energy
+    row.lam_v = module_.multipliers()[0];
+    row.lam_a = module_.multipliers()[1];
+  }
+  else
+  {
+    auto& r = row.values;
+    r.phi_integral += v.phi_integral;
+    r.volume += v.volume;
+    r.surface += v.surface;
+    r.energy_ch += v.energy_ch;
+    r.helfrich += v.helfrich;
+    r.total_energy += v.total_energy; // (7.4) without E_int, which the interaction adds
+    r.total_with_kinetic += v.total_energy;
+    r.phi_min = std::min(r.phi_min, v.phi_min);
+    r.phi_max = std::max(r.phi_max, v.phi_max);
+  }
+  if (groups_ > 1)
+  {
+    const std::string g = group_.name + ".";
+    row.extra.insert(row.extra.end(),
+                     {{g + "volume", v.volume}, {g + "surface", v.surface},
+                      {g + "helfrich_energy", v.helfrich}, {g + "total_energy", v.total_energy},
+                      {g + "center_x", v.center[0]}, {g + "center_y", v.center[1]},
+                      {g + "center_z", v.center[2]}, {g + "circularity", v.circularity},
+                      {g + "lambda_area", module_.multipliers()[1]}});
+  }
 }
 
-std::string PhaseFieldSubProblem::health(const Observation& row) const
+std::string PhaseFieldSubProblem::health(const Observation&) const
 {
-  const auto& v = row.values;
+  const auto& v = last_; // this phase field's own values
   const auto& limits = scene_.numerics.limits;
   const double phi_abs = std::max(-v.phi_min, v.phi_max);
   if (phi_abs > limits.phi_bound)
-    return format("field phi reaches %.4g, beyond the bound +-%g (numerics.limits.phi_bound); "
+    return format("field phi%s reaches %.4g, beyond the bound +-%g (numerics.limits.phi_bound); "
                   "the time step may be too large",
-                  v.phi_max > -v.phi_min ? v.phi_max : v.phi_min, limits.phi_bound);
+                  group_.label_suffix.c_str(), v.phi_max > -v.phi_min ? v.phi_max : v.phi_min,
+                  limits.phi_bound);
   if (limits.volume_drift && initial_volume_ != 0)
   {
     const double drift = std::abs(v.volume - initial_volume_) / std::abs(initial_volume_);
     if (drift > *limits.volume_drift)
-      return format("the cell volume drifted by %.3g (relative) from %.6g to %.6g, beyond "
+      return format("the %s drifted by %.3g (relative) from %.6g to %.6g, beyond "
                     "numerics.limits.volume_drift = %g",
-                    drift, initial_volume_, v.volume, *limits.volume_drift);
+                    groups_ > 1 ? ("volume of " + group_.name).c_str() : "cell volume", drift,
+                    initial_volume_, v.volume, *limits.volume_drift);
   }
   return "";
 }

@@ -14,9 +14,10 @@ namespace cellphase
 class PhaseFieldSubProblem : public SubProblem
 {
 public:
-  /// `group`: the prefix of its fields ("cell": cell.phi, cell.mu, ...).
+  /// One phase field per group of cells (scene/Plan.h): its fields are
+  /// <group.prefix>.phi, ..., its parameters those of its cells.
   PhaseFieldSubProblem(scene::PlanStep step, const scene::Scene& scene, MPI_Comm comm,
-                       std::string group = "cell");
+                       scene::CellGroup group, int groups);
 
   void declare(FieldRegistry& fields) override;
   void attach(FieldRegistry& fields) override;
@@ -32,17 +33,19 @@ public:
   int threads() const { return module_.threads(); }
 
 private:
-  std::string field(const std::string& f) const { return group_ + "." + f; }
+  std::string field(const std::string& f) const { return group_.prefix + "." + f; }
   std::string key(const std::string& k) const { return name() + "." + k; }
   void publish_targets();
   void unwrap_centre(std::array<double, 3>& centre);
 
-  const scene::Scene& scene_;
-  std::string group_;
+  scene::CellGroup group_;
+  int groups_;              ///< phase fields of the scene
+  const scene::Scene scene_; ///< as this group sees it (its cells, its parameters)
   PhaseFieldModule module_;
   std::unique_ptr<Observables> observables_;
   FieldRegistry* fields_ = nullptr;
   double initial_volume_ = 0;
+  ObservableValues last_; ///< of the last observe()
   /// Along periodic axes: the whole periods added so far, and the centre of the last row.
   std::array<double, 3> centre_shift_{0, 0, 0}, last_centre_{0, 0, 0};
   bool have_last_centre_ = false;

@@ -28,15 +28,38 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
 {
   std::map<std::string, PlanStep> steps;
   const Model m = s.phase_field.model;
-  PlanStep pf{"phase_field", std::string("phase-field module (") + to_string(m) + ")", {},
-              qualified("cell", model_fields(m))};
-  if (s.flow)
+  const auto groups = cell_groups(s);
+  PlanStep interaction{"interaction", "interaction between cells (7.5), (7.11)", {}, {}};
+  for (const auto& g : groups)
   {
-    pf.writes.push_back("cell.potential"); // dE/dphi, the interface force's potential
-    if (advected(m))
-      pf.reads.push_back("flow.v");
+    PlanStep pf{g.step, std::string("phase-field module (") + to_string(m) + ")"
+                            + (groups.size() > 1 ? " of " + g.name : ""),
+                {}, qualified(g.prefix, model_fields(m))};
+    if (s.flow)
+    {
+      pf.writes.push_back(g.prefix + ".potential"); // dE/dphi, the interface force's potential
+      if (advected(m))
+        pf.reads.push_back("flow.v");
+    }
+    if (s.interaction)
+    {
+      const std::string sums = "interaction." + g.name;
+      pf.reads.insert(pf.reads.end(), {sums + ".w_sum", sums + ".B_sum"});
+      interaction.reads.push_back(g.prefix + ".phi");
+      interaction.writes.insert(interaction.writes.end(), {sums + ".w_sum", sums + ".B_sum"});
+    }
+    steps[pf.name] = pf;
   }
-  steps[pf.name] = pf;
+  if (groups.size() > 1)
+  {
+    if (!s.interaction)
+    {
+      interaction.description = "overlap of the cells (no interaction potential)";
+      for (const auto& g : groups)
+        interaction.reads.push_back(g.prefix + ".phi");
+    }
+    steps[interaction.name] = interaction;
+  }
   if (has_membrane_union(s))
     steps["membrane"] = {"membrane", "membrane union module (phi_cells = max_i phi_i, 7.14)",
                          {"cell.phi"}, {"membrane.phi_cells"}};
@@ -66,9 +89,14 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
 std::vector<std::string> default_split(const Scene& s)
 {
   std::vector<std::string> order;
-  for (const char* name : {"membrane", "flow", "phase_field", "concentration"})
-    if (available_steps(s).count(name))
+  const auto steps = available_steps(s);
+  for (const char* name : {"interaction", "membrane", "flow"})
+    if (steps.count(name))
       order.push_back(name);
+  for (const auto& g : cell_groups(s))
+    order.push_back(g.step);
+  if (steps.count("concentration"))
+    order.push_back("concentration");
   return order;
 }
 
@@ -78,8 +106,48 @@ Plan make_plan(const Scene& s)
   Plan plan;
   for (const auto& name : s.numerics.split ? *s.numerics.split : default_split(s))
     plan.steps.push_back(steps.at(name));
-  plan.initial = {"cell.phi"};
+  for (const auto& g : cell_groups(s))
+    plan.initial.push_back(g.prefix + ".phi");
   return plan;
+}
+
+std::vector<CellGroup> cell_groups(const Scene& s)
+{
+  std::vector<CellGroup> groups;
+  for (std::size_t i = 0; i < s.cells.size(); ++i)
+  {
+    const std::string& name = s.cells[i].group.empty() ? s.cells[i].name : s.cells[i].group;
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const CellGroup& g) { return g.name == name; });
+    if (it == groups.end())
+      it = groups.insert(groups.end(), CellGroup{name, "", "", "", {}});
+    it->cells.push_back(i);
+  }
+  const bool one = groups.size() == 1;
+  for (auto& g : groups)
+  {
+    g.prefix = one ? "cell" : "cell." + g.name;
+    g.label_suffix = one ? "" : "_" + g.name;
+    g.step = one ? "phase_field" : "phase_field." + g.name;
+  }
+  return groups;
+}
+
+Scene group_scene(const Scene& s, const CellGroup& g)
+{
+  Scene out = s;
+  out.cells.clear();
+  for (std::size_t i : g.cells)
+    out.cells.push_back(s.cells[i]);
+  const Cell& first = out.cells.front();
+  if (first.Be)
+    out.numbers.Be = *first.Be;
+  if (first.spontaneous_curvature)
+    out.phase_field.spontaneous_curvature = *first.spontaneous_curvature;
+  if (first.mobility)
+    out.phase_field.mobility = *first.mobility;
+  if (first.penalty_area)
+    out.phase_field.penalty_area = *first.penalty_area;
+  return out;
 }
 
 std::string plan_problem(const Plan& plan)

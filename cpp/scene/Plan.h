@@ -22,6 +22,21 @@ struct Plan
   std::vector<std::string> initial; ///< fields the scene gives initial values for
 };
 
+/// The cells that share one phase field (by Cell::group). With one group its fields are
+/// cell.phi, cell.mu, ... (output labels phi, mu); with several, cell.<group>.phi, ...
+/// (labels phi_<group>, ...) and the step phase_field.<group>.
+struct CellGroup
+{
+  std::string name;
+  std::string prefix;       ///< of its fields: "cell" or "cell.<group>"
+  std::string label_suffix; ///< of its output labels: "" or "_<group>"
+  std::string step;         ///< "phase_field" or "phase_field.<group>"
+  std::vector<std::size_t> cells;
+};
+std::vector<CellGroup> cell_groups(const Scene& s);
+/// The scene as one group's phase field sees it: only its cells, its own parameters.
+Scene group_scene(const Scene& s, const CellGroup& g);
+
 /// Sub-problems the scene needs, in the thesis' order (section 5.3: the membrane union,
 /// then the flow with phi^n, the phase field with v^{n+1}, the membrane concentration), or
 /// in the order of numerics.split. Does not verify it (see plan_problem).

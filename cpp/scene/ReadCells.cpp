@@ -1,4 +1,5 @@
 #include "scene/Sections.h"
+#include <tuple>
 #include "scene/Shapes.h"
 #include <algorithm>
 #include <cmath>
@@ -39,7 +40,8 @@ const char* shape_name(ShapeKind k)
 /// Rejects size keys of other shapes, then anything unknown.
 void check_keys(const Section& c, ShapeKind kind)
 {
-  std::vector<std::string> allowed = {"name", "shape", "center", "rotation"};
+  std::vector<std::string> allowed = {"name", "shape", "center", "rotation", "group", "Be",
+                                      "spontaneous_curvature", "mobility", "penalty_area"};
   const std::vector<std::string> own = size_keys(kind);
   allowed.insert(allowed.end(), own.begin(), own.end());
   for (const std::string& key : c.keys())
@@ -59,6 +61,33 @@ void require(const Section& c, const std::string& key, ShapeKind kind, const std
   if (!c.has(key))
     c.fail(key, std::string("missing; shape ") + shape_name(kind) + " needs " + key + " ("
                     + what + ")");
+}
+/// The cell's group (its own phase field unless named) and its own parameters, which the
+/// cells of a group must share.
+void read_cell_phase_field(const Section& c, const Scene& s, Cell& cell)
+{
+  cell.group = c.string("group", cell.name);
+  if (cell.group.empty() || cell.group.find_first_of(".,/ ") != std::string::npos)
+    c.fail("group", "found \"" + cell.group + "\", expected a name without '.', ',', '/' or "
+                    "spaces (it names the phase field's fields, e.g. phi_<group>)");
+  if (c.has("Be"))
+    cell.Be = c.number("Be", positive());
+  if (c.has("spontaneous_curvature"))
+    cell.spontaneous_curvature = c.number("spontaneous_curvature", any());
+  if (c.has("mobility"))
+    cell.mobility = c.number("mobility", positive());
+  if (c.has("penalty_area"))
+    cell.penalty_area = c.number("penalty_area", non_negative());
+  for (const Cell& other : s.cells)
+    if (other.group == cell.group)
+      for (const auto& [key, mine, theirs] :
+           {std::tuple{"Be", cell.Be, other.Be},
+            std::tuple{"spontaneous_curvature", cell.spontaneous_curvature, other.spontaneous_curvature},
+            std::tuple{"mobility", cell.mobility, other.mobility},
+            std::tuple{"penalty_area", cell.penalty_area, other.penalty_area}})
+        if (mine != theirs)
+          c.fail(key, std::string("differs from that of ") + other.name + " in group \"" + cell.group
+                          + "\"; the cells of one group share one phase field and its parameters");
 }
 } // namespace
 
@@ -132,6 +161,7 @@ void read_cells(const Section& top, Scene& s)
       break;
     }
     }
+    read_cell_phase_field(c, s, cell);
     s.cells.push_back(cell);
   }
 }

@@ -9,6 +9,10 @@ using namespace yaml;
 void check_split(const Section& top, const Scene& s)
 {
   const Section n = top.section("numerics");
+  if (s.flow && cell_groups(s).size() > 1)
+    top.fail("flow", "the flow is coupled to one phase field; this scene has "
+                     + std::to_string(cell_groups(s).size()) + " (one per cell). Put the cells "
+                     "into one phase field with the same `group:` in each cell");
   if (s.numerics.split)
   {
     const auto available = default_split(s);

@@ -41,6 +41,20 @@ struct Cell
   double rotation = 0;            ///< radians, about the z axis
   double cassini_a = 0, cassini_b = 0; ///< Cassini oval |x-f1||x-f2| = b^2, foci at +-a
   std::string expression;         ///< signed distance in x, y, z (muparser syntax)
+  /// Phase field the cell belongs to: cells of one group share a phase field (case (a) of
+  /// Fig. 7.3); by default every cell has its own (7.3).
+  std::string group;
+  /// Parameters of this cell's phase field (7.4)-(7.10); absent: those of phase_field and
+  /// numbers. Cells of one group must agree.
+  std::optional<double> Be, spontaneous_curvature, mobility, penalty_area;
+};
+
+/// Interaction between the cells' phase fields, (7.5) and (7.11), with one interaction
+/// number In for all pairs and the interaction function w-bar of Fig. 7.7.
+struct Interaction
+{
+  double In = 0.01;
+  double r1 = 1, r2 = 1, a1 = 0, a2 = 0, a3 = 1;
 };
 
 /// The phase-field / membrane model of section 2.5 and 3.4.1.
@@ -204,6 +218,7 @@ struct Scene
   Numerics numerics;
   Output output;
   std::optional<Flow> flow;           ///< absent: no flow module at all
+  std::optional<Interaction> interaction; ///< absent: the cells do not interact
 };
 
 const char* to_string(Model m);

@@ -55,7 +55,7 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
     yaml::Origin origin{source, apply_overrides(root, overrides, source)};
     const yaml::Section top = yaml::Section::root(origin, root);
     top.allow_only({"domain", "boundary", "cells", "phase_field", "numbers", "units",
-                    "numerics", "flow", "output"});
+                    "numerics", "flow", "output", "interaction"});
     Scene s;
     s.source = source;
     s.overrides = overrides;
@@ -66,6 +66,7 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
     read_numbers(top, s);
     read_numerics(top, s);
     read_cells(top, s);
+    read_interaction(top, s);
     read_flow(top, s);
     read_output(top, s);
     check_geometry(top, s);

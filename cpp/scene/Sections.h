@@ -14,6 +14,7 @@ void read_numbers(const yaml::Section& top, Scene& s);      ///< numbers or unit
 void read_numerics(const yaml::Section& top, Scene& s);     ///< numerics
 void read_cells(const yaml::Section& top, Scene& s);        ///< cells (shapes only)
 void read_flow(const yaml::Section& top, Scene& s);         ///< flow (optional)
+void read_interaction(const yaml::Section& top, Scene& s);  ///< interaction (after cells)
 void read_output(const yaml::Section& top, Scene& s);       ///< output (after flow)
 /// numerics.petsc and flow.petsc: PETSc option names without the leading '-' and single
 /// values, passed on as text; a MUMPS control (mat_mumps_icntl_<1..60>, mat_mumps_cntl_<1..15>)

@@ -1,0 +1,44 @@
+// Interaction between the cells' phase fields, section 7.1.2: before the phase fields step,
+// the sums over the other cells w_sum_i = sum_{j != i} w_j and B_sum_i = sum_{j != i}
+// B(phi_j) at the P2 nodes, from which each cell's equation takes its source (7.11). Only
+// pairs whose diffuse bands (|phi| < 1) have overlapping bounding boxes are summed, so the
+// cost grows with the number of neighbours, not with N^2. Also observes, for any scene with
+// several phase fields, the interaction energy (7.5) and the largest overlap
+// max_x min((1 + phi_i)/2, (1 + phi_j)/2) of two cells.
+#pragma once
+#include "core/SubProblem.h"
+#include "physics/InteractionFunction.h"
+#include "scene/Plan.h"
+#include <array>
+#include <memory>
+#include <optional>
+
+namespace cellphase
+{
+class InteractionSubProblem : public SubProblem
+{
+public:
+  InteractionSubProblem(scene::PlanStep step, const scene::Scene& scene, MPI_Comm comm);
+
+  std::vector<std::string> attach_reads() const override { return phis_; }
+  void declare(FieldRegistry& fields) override;
+  void attach(FieldRegistry& fields) override;
+  StepTimings step(double dt) override;
+  void observe(Observation& row) override;
+
+private:
+  /// Bounding box (min x, y, z, max x, y, z) of a phase field's band over all ranks; empty
+  /// (min > max) if it has none.
+  std::array<double, 6> band_box(const Function& phi) const;
+  void update_sums();
+
+  MPI_Comm comm_;
+  double eps_;
+  std::optional<scene::Interaction> interaction_;
+  std::vector<scene::CellGroup> groups_;
+  std::vector<std::string> phis_;
+  FieldRegistry* fields_ = nullptr;
+  std::vector<std::shared_ptr<Function>> w_sum_, B_sum_;
+  std::vector<std::shared_ptr<Form>> energy_;
+};
+} // namespace cellphase
