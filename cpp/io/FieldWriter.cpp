@@ -147,11 +147,10 @@ void FieldWriter::write(const FieldMap& fields, double time, int step)
   std::vector<std::string> written_names;
   {
     io::XDMFFile out(comm_, file, "w");
-    for (const auto& name : names_)
+    // The caller chose the fields (output.fields, with phi_<group> for every cell's phi).
+    for (auto it = fields.begin(); it != fields.end(); ++it)
     {
-      auto it = fields.find(name);
-      if (it == fields.end())
-        continue;
+      const std::string& name = it->first;
       // Vector fields (the velocity) as vector P1; the pressure (P1) loses nothing either.
       const bool vector = it->second->function_space()->element()->value_size() > 1;
       Function u(vector ? p1_vector_ : p1_);
