@@ -603,7 +603,7 @@ TEST(SceneErrors, UnknownKeys)
   EXPECT_ERROR(minimal_with("cells:", "cell:"), "(did you mean 'cells'?)");
   EXPECT_ERROR(minimal_with("  - radius: 1", "  - radius: 1\n    colour: red"),
                "cells[0].colour: unknown key; allowed keys in cells[0]: name, shape, center, "
-               "rotation, radius");
+               "rotation, group, Be, spontaneous_curvature, mobility, penalty_area, radius");
   EXPECT_ERROR(minimal_with("  model: cahn_hilliard", "  model: cahn_hilliard\n  gamma: 1"),
                "phase_field.gamma: unknown key");
   EXPECT_ERROR(minimal_with("  end_time: 0.1", "  end_time: 0.1\n  mesh: {levels: 3}"),
