@@ -112,7 +112,10 @@ void read_tag_walls(const Section& walls, const MeshDomain& mesh, Flow& flow)
   if (names.empty() && !walls.keys().empty())
     walls.fail(walls.keys()[0], "the mesh file " + mesh.path()
                                     + " has no facet tags; its whole boundary is no_slip");
-  walls.allow_only(names);
+  for (const std::string& key : walls.keys())
+    if (!std::count(names.begin(), names.end(), key))
+      walls.fail(key, "unknown boundary tag; the tags of " + mesh.path() + " are "
+                          + join(names) + " (walls of a mesh domain are named by tag)");
   for (const std::string& name : names)
   {
     if (!walls.has(name))
