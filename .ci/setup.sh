@@ -12,6 +12,7 @@ packages=(
   libyaml-cpp-dev libmuparser-dev      # scene files, signed-distance expressions
   libpugixml-dev                       # the XDMF index of the field output
   libgtest-dev                         # C++ tests
+  gmsh                                 # meshes/*.geo -> XDMF at build time
   python3-pytest python3-yaml python3-numpy python3-matplotlib python3-h5py  # tests, plots
   libopenblas0-pthread                 # optimised BLAS for MUMPS (see benchmarks/)
 )

@@ -1,7 +1,74 @@
 #include "app/FlowSetup.h"
+#include "mesh/BoundaryTags.h"
+#include "scene/Formula.h"
+#include "scene/MeshDomain.h"
+#include <algorithm>
 
 namespace cellphase
 {
+namespace
+{
+/// The module's wall for a scene wall that is not open.
+Wall wall_of(const scene::WallSpec& w, int dim)
+{
+  Wall wall;
+  switch (w.type)
+  {
+  case scene::WallType::open: break; // callers skip open walls
+  case scene::WallType::no_slip: wall.kind = WallKind::no_slip; break;
+  case scene::WallType::free_slip: wall.kind = WallKind::free_slip; break;
+  case scene::WallType::moving:
+    wall.kind = WallKind::moving;
+    wall.velocity = w.velocity;
+    break;
+  case scene::WallType::prescribed:
+    wall.kind = WallKind::prescribed;
+    wall.profile = scene::VectorFormula(w.profile, dim);
+    break;
+  }
+  return wall;
+}
+
+/// Walls of a mesh-file domain, one per tag (unlisted tags and the untagged boundary are
+/// no_slip), and the pressure pin if no part of the boundary is open.
+void tag_walls(const scene::Scene& scene, FlowParameters& p)
+{
+  const auto mesh = scene.domain.mesh;
+  p.tagged_walls = true;
+  bool closed = true;
+  auto add = [&](const scene::WallSpec& w, int tag)
+  {
+    if (w.type == scene::WallType::open)
+    {
+      closed = false;
+      return;
+    }
+    Wall wall = wall_of(w, 2);
+    wall.facets = [mesh, tag](const Mesh& m) { return tagged_facets(m, *mesh, {tag}); };
+    wall.normal_axis = mesh->normal_axis({tag});
+    p.walls.push_back(wall);
+  };
+  for (const std::string& name : mesh->tag_names())
+  {
+    const auto it = scene.flow->tag_walls.find(name);
+    add(it != scene.flow->tag_walls.end() ? it->second : scene::WallSpec{}, mesh->tag(name));
+  }
+  if (mesh->tag_length(scene::MeshDomain::untagged) > 0)
+    add(scene::WallSpec{}, scene::MeshDomain::untagged);
+  if (closed)
+  {
+    // A closed boundary fixes the pressure up to a constant: pin it at the lowest
+    // boundary vertex (lexicographic in y, x; the same on every rank).
+    std::array<double, 2> pin = mesh->boundary().front().a;
+    for (const auto& e : mesh->boundary())
+      for (const auto& q : {e.a, e.b})
+        if (std::tie(q[1], q[0]) < std::tie(pin[1], pin[0]))
+          pin = q;
+    p.pressure_pin = std::array<double, 3>{pin[0], pin[1], 0};
+  }
+}
+} // namespace
+
 FlowParameters flow_parameters(const scene::Scene& scene)
 {
   const scene::Flow& f = *scene.flow;
@@ -17,23 +84,17 @@ FlowParameters flow_parameters(const scene::Scene& scene)
   p.capillary = scene::flow_capillary(scene);
   p.gravity = f.gravity;
   p.force = f.force;
-  for (int i = 0; i < 2 * scene.domain.dim; ++i)
+  for (int i = 0; i < 2 * scene.domain.dim && !scene.domain.mesh; ++i)
   {
     const scene::WallSpec& w = f.walls[i];
-    Wall wall;
+    if (w.type == scene::WallType::open)
+      continue; // traction-free: no condition
+    Wall wall = wall_of(w, scene.domain.dim);
     wall.side = Side(i);
-    switch (w.type)
-    {
-    case scene::WallType::open: continue; // traction-free: no condition
-    case scene::WallType::no_slip: wall.kind = WallKind::no_slip; break;
-    case scene::WallType::free_slip: wall.kind = WallKind::free_slip; break;
-    case scene::WallType::moving:
-      wall.kind = WallKind::moving;
-      wall.velocity = w.velocity;
-      break;
-    }
     p.walls.push_back(wall);
   }
+  if (scene.domain.mesh)
+    tag_walls(scene, p);
   p.periodic = scene.domain.periodic; // their sides are open above: no wall there
   p.petsc = f.petsc;
   if (f.inextensibility)

@@ -1,4 +1,5 @@
 #include "compat/Dolfinx.h"
+#include "scene/MeshDomain.h"
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/geometry/utils.h>
 #include <dolfinx/refinement/refine.h>
@@ -12,6 +13,15 @@ using namespace dolfinx;
 
 std::shared_ptr<Mesh> create_base_mesh(MPI_Comm comm, const scene::Domain& d)
 {
+  if (d.mesh)
+  {
+    // Every rank has read the file; rank 0 gives it to the partitioner.
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    const auto& m = d.mesh->data();
+    return rank == 0 ? create_triangle_mesh(comm, m.points, m.cells)
+                     : create_triangle_mesh(comm, {}, {});
+  }
   const auto& lo = d.lower;
   const auto& up = d.upper;
   const auto& n = d.resolution;
@@ -24,6 +34,39 @@ std::shared_ptr<Mesh> create_base_mesh(MPI_Comm comm, const scene::Domain& d)
       comm, {{{lo[0], lo[1], lo[2]}, {up[0], up[1], up[2]}}},
       {std::size_t(n[0]), std::size_t(n[1]), std::size_t(n[2])}, mesh::CellType::tetrahedron,
       mesh::GhostMode::none));
+}
+
+std::shared_ptr<Mesh> create_triangle_mesh(MPI_Comm comm, std::span<const double> points,
+                                           std::span<const std::int64_t> cells)
+{
+  const std::size_t n = points.size() / 3;
+  std::vector<double> xy(2 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    xy[2 * i] = points[3 * i], xy[2 * i + 1] = points[3 * i + 1];
+  std::vector<std::int64_t> c(cells.begin(), cells.end());
+  std::vector<std::int32_t> offsets(c.size() / 3 + 1);
+  for (std::size_t i = 0; i < offsets.size(); ++i)
+    offsets[i] = std::int32_t(3 * i);
+  graph::AdjacencyList<std::int64_t> adjacency(std::move(c), std::move(offsets));
+  const fem::CoordinateElement element(mesh::CellType::triangle, 1);
+  return std::make_shared<Mesh>(
+      mesh::create_mesh(comm, adjacency, element, xy, {n, 2}, mesh::GhostMode::none));
+}
+
+std::vector<std::int32_t> boundary_facets_by_midpoint(const Mesh& m, const PointMarker& on)
+{
+  const int tdim = m.topology().dim();
+  auto& topology = const_cast<Mesh&>(m).topology_mutable();
+  topology.create_entities(tdim - 1);
+  topology.create_connectivity(tdim - 1, tdim);
+  topology.create_connectivity(tdim, tdim - 1); // for the facets' geometry nodes
+  const auto facets = mesh::exterior_facet_indices(m.topology());
+  const auto mid = mesh::compute_midpoints(m, tdim - 1, facets);
+  std::vector<std::int32_t> out;
+  for (std::size_t i = 0; i < facets.size(); ++i)
+    if (on(mid[3 * i], mid[3 * i + 1], mid[3 * i + 2]))
+      out.push_back(facets[i]);
+  return out;
 }
 
 std::shared_ptr<Mesh> refine_cells(Mesh& m, const std::vector<std::int32_t>& cells)

@@ -39,9 +39,18 @@ using PointEvaluator = std::function<void(std::span<const double> points, std::s
 
 namespace cellphase::compat
 {
-/// Structured base mesh of the scene's rectangle/box (crossed diagonals in 2D for isotropy).
-/// Not ghosted: all refinements stay on the rank of their base cell.
+/// Structured base mesh of the scene's rectangle/box (crossed diagonals in 2D for isotropy),
+/// or the mesh of domain.mesh. Not ghosted: all refinements stay on the rank of their base cell.
 std::shared_ptr<Mesh> create_base_mesh(MPI_Comm comm, const scene::Domain& domain);
+
+/// 2D mesh of first-order triangles from node coordinates (3 per node, z unused) and cells
+/// (3 node numbers each) given on rank 0 (the other ranks pass empty lists), partitioned
+/// over the ranks, not ghosted.
+std::shared_ptr<Mesh> create_triangle_mesh(MPI_Comm comm, std::span<const double> points,
+                                           std::span<const std::int64_t> cells);
+
+/// Owned exterior facets whose midpoint satisfies `on`.
+std::vector<std::int32_t> boundary_facets_by_midpoint(const Mesh& mesh, const PointMarker& on);
 
 /// Refine the given local cells (and what conformity needs) without redistributing.
 std::shared_ptr<Mesh> refine_cells(Mesh& mesh, const std::vector<std::int32_t>& cells);

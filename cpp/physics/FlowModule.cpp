@@ -173,19 +173,28 @@ void FlowModule::build_bcs()
     closed.at(2 * a) = closed.at(2 * a + 1) = true;
   for (const Wall& wall : walls)
   {
-    const int axis = axis_of(wall.side);
-    if (axis >= dim)
-      throw std::invalid_argument("flow: front/back walls need a 3D mesh");
-    if (std::count(params_.periodic.begin(), params_.periodic.end(), axis))
-      throw std::invalid_argument("flow: a wall on a side of a periodic axis");
-    closed[int(wall.side)] = true;
-    const double plane = is_upper(wall.side) ? hi[axis] : lo[axis];
-    auto facets = compat::boundary_facets(
-        *mesh_, [=](double x, double y, double z)
-        { return std::abs(std::array<double, 3>{x, y, z}[axis] - plane) < tol; });
+    const bool tagged = bool(wall.facets);
+    const int axis = tagged ? wall.normal_axis : axis_of(wall.side);
+    std::vector<std::int32_t> facets;
+    if (tagged)
+      facets = wall.facets(*mesh_);
+    else
+    {
+      if (axis >= dim)
+        throw std::invalid_argument("flow: front/back walls need a 3D mesh");
+      if (std::count(params_.periodic.begin(), params_.periodic.end(), axis))
+        throw std::invalid_argument("flow: a wall on a side of a periodic axis");
+      closed[int(wall.side)] = true;
+      const double plane = is_upper(wall.side) ? hi[axis] : lo[axis];
+      facets = compat::boundary_facets(
+          *mesh_, [=](double x, double y, double z)
+          { return std::abs(std::array<double, 3>{x, y, z}[axis] - plane) < tol; });
+    }
 
     if (wall.kind == WallKind::free_slip)
     {
+      if (axis < 0)
+        throw std::invalid_argument("flow: free slip on a wall that is not perpendicular to an axis");
       // Only the normal component is fixed (v.n = 0); the tangential stress vanishes
       // naturally.
       auto component = compat::collapse(*W_, {0, axis});
@@ -202,7 +211,8 @@ void FlowModule::build_bcs()
     else if (wall.kind == WallKind::moving)
     {
       auto u = wall.velocity;
-      u[axis] = 0; // the wall moves in its plane
+      if (axis >= 0)
+        u[axis] = 0; // the wall moves in its plane
       compat::interpolate_vector(*g, [u](double, double, double) { return u; });
     }
     else
@@ -222,21 +232,25 @@ void FlowModule::build_bcs()
   // dropped continuity row is the sum of the others. The mean is removed after the solve.
   // Periodic axes: the pinned dof is at the lower corner, on the min faces, which hold
   // the masters; the constraint keeps Dirichlet dofs out of the slaves anyway.
-  pinned_ = std::all_of(closed.begin(), closed.end(), [](bool c) { return c; });
+  // Tagged walls: the scene knows whether they close the boundary, and names a vertex.
+  pinned_ = params_.tagged_walls ? params_.pressure_pin.has_value()
+                                 : std::all_of(closed.begin(), closed.end(), [](bool c) { return c; });
   if (pinned_)
   {
+    const std::array<double, 3> pin = params_.tagged_walls ? *params_.pressure_pin : lo;
     auto corner = compat::dofs_at(Q_, [&](double x, double y, double z)
                                   {
                                     const std::array<double, 3> p{x, y, z};
                                     for (int d = 0; d < dim; ++d)
-                                      if (std::abs(p[d] - lo[d]) > tol)
+                                      if (std::abs(p[d] - pin[d]) > tol)
                                         return false;
                                     return true;
                                   });
     int found = corner[0].empty() ? 0 : 1;
     MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPI_INT, MPI_MAX, comm_);
     if (!found)
-      throw std::runtime_error("flow: no pressure node at the lower corner of the box");
+      throw std::runtime_error("flow: no pressure node at the pinned point (the lower corner of "
+                               "the box, or the mesh vertex chosen for a closed mesh domain)");
     auto zero = std::make_shared<Function>(Q_.space);
     zero->x()->set(0.0);
     bc_values_.push_back(zero);

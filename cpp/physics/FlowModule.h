@@ -7,8 +7,10 @@
 #include "compat/Periodic.h"
 #include "solve/LinearSolver.h"
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,11 @@ struct Wall
   WallKind kind = WallKind::no_slip;
   std::array<double, 3> velocity{0, 0, 0};
   VectorPointFunction profile;
+  /// A wall given by facet tags (mesh-file domains) instead of a side: its boundary
+  /// facets on a mesh, and the axis it is perpendicular to (-1: none; free slip needs one,
+  /// a moving wall then keeps its velocity as given).
+  std::function<std::vector<std::int32_t>(const Mesh&)> facets;
+  int normal_axis = -1;
 };
 
 /// Local inextensibility of the membrane, section 3.4.3 (Aland et al.): a multiplier
@@ -64,6 +71,10 @@ struct FlowParameters
   std::vector<Wall> walls;
   /// Periodic axes (0, 1, 2 = x, y, z) of the mesh's bounding box; no walls on their sides.
   std::vector<int> periodic;
+  /// Walls by facet tags (Wall::facets) rather than box sides: the pressure is pinned at
+  /// this mesh vertex when the walls close the whole boundary (none: a part is open).
+  bool tagged_walls = false;
+  std::optional<std::array<double, 3>> pressure_pin;
   std::map<std::string, std::string> petsc; ///< options under the prefix flow_
   Inextensibility inextensibility;
 };

@@ -1,4 +1,5 @@
 #include "physics/PhaseFieldModule.h"
+#include "mesh/BoundaryTags.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
 #include "util/Cpus.h"
@@ -21,9 +22,15 @@ double surface_tension(const scene::Scene& s)
   return s.phase_field.surface_tension ? 1 / s.numbers.Ca : 0.0;
 }
 
-/// Boundary facets on the sides of non-periodic axes: where phi = -1 (2.19) applies.
-std::vector<std::int32_t> wall_facets(const Mesh& mesh, const scene::Domain& d)
+/// Boundary facets on the sides of non-periodic axes: where phi = -1 (2.19) applies. A
+/// mesh-file domain: the whole boundary, or the facets of boundary.phi_tags.
+std::vector<std::int32_t> wall_facets(const Mesh& mesh, const scene::Scene& s)
 {
+  const scene::Domain& d = s.domain;
+  if (d.mesh && !s.phi_tags.empty())
+    return tagged_facets(mesh, *d.mesh, tag_numbers(*d.mesh, s.phi_tags));
+  if (d.mesh)
+    return compat::boundary_facets(mesh, [](double, double, double) { return true; });
   double extent = 0;
   for (int a = 0; a < d.dim; ++a)
     extent = std::max(extent, d.upper[a] - d.lower[a]);
@@ -126,7 +133,7 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
     // (their dof numberings differ).
     boundary_value_ = std::make_shared<Function>(names_.size() > 1 ? V_ : W_);
     boundary_value_->x()->set(-1.0);
-    const auto facets = wall_facets(*mesh, scene_.domain);
+    const auto facets = wall_facets(*mesh, scene_);
     if (names_.size() > 1)
       bcs_.push_back(std::make_shared<DirichletBC>(
           boundary_value_, compat::boundary_dofs(*W_, 0, *V_, facets), W_->sub({0})));

@@ -1,5 +1,6 @@
 #include "scene/Check.h"
 #include "scene/Geometry.h"
+#include "scene/MeshDomain.h"
 #include "scene/Plan.h"
 #include "scene/Resolution.h"
 #include "scene/Sections.h"
@@ -108,13 +109,28 @@ void flow_report(const Scene& s, Report& r)
                                                          : std::string(" from numbers.Ca"))
                                     + ")");
   std::string walls;
-  for (int i = 0; i < 2 * dim; ++i)
+  auto wall_text = [&](const std::string& where, const WallSpec& w)
   {
-    const WallSpec& w = f.walls[i];
-    walls += std::string(i ? ", " : "") + side_names[i] + " " + to_string(w.type);
+    walls += std::string(walls.empty() ? "" : ", ") + where + " " + to_string(w.type);
     if (w.type == WallType::moving)
       walls += " " + vector_text(w.velocity, dim);
-  }
+    if (w.type == WallType::prescribed)
+    {
+      walls += " (";
+      for (int c = 0; c < dim; ++c)
+        walls += (c ? ", " : "") + w.profile[c];
+      walls += ")";
+    }
+  };
+  if (s.domain.mesh)
+    for (const std::string& name : s.domain.mesh->tag_names())
+    {
+      const auto it = f.tag_walls.find(name);
+      wall_text(name, it != f.tag_walls.end() ? it->second : WallSpec{});
+    }
+  else
+    for (int i = 0; i < 2 * dim; ++i)
+      wall_text(side_names[i], f.walls[i]);
   r.line("  walls", walls);
   if (!f.petsc.empty())
   {
@@ -145,8 +161,9 @@ SizeEstimate estimate_size(const Scene& s)
   const Domain& d = s.domain;
   SizeEstimate e;
   // 2D base meshes have crossed diagonals: four triangles per rectangle
-  e.base_cells = d.dim == 2 ? 4.0 * d.resolution[0] * d.resolution[1]
-                            : 6.0 * d.resolution[0] * d.resolution[1] * d.resolution[2];
+  e.base_cells = d.mesh ? double(d.mesh->data().num_cells())
+                 : d.dim == 2 ? 4.0 * d.resolution[0] * d.resolution[1]
+                              : 6.0 * d.resolution[0] * d.resolution[1] * d.resolution[2];
   for (const Cell& c : s.cells)
     e.interface_measure += interface_measure(d, SignedDistance(c, d.dim));
   if (required_levels(s) > 0)
@@ -180,7 +197,22 @@ std::string check_report(const Scene& s)
   }
   r.line("dimension", std::to_string(dim) + "D (" + (dim == 2 ? "triangles" : "tetrahedra")
                           + ")");
-  r.line("domain", domain + ", " + cells_per_axis + " base cells");
+  if (d.mesh)
+  {
+    const MeshDomain& m = *d.mesh;
+    r.line("domain", "mesh " + m.path() + ", " + std::to_string(m.data().num_cells())
+                         + " triangles, area " + fmt(m.area()) + ", bounding box " + domain);
+    std::string tags;
+    for (const std::string& name : m.tag_names())
+      tags += (tags.empty() ? "" : ", ") + name + " (length " + fmt(m.tag_length(m.tag(name)))
+              + ")";
+    const double untagged = m.tag_length(MeshDomain::untagged);
+    if (untagged > 0)
+      tags += (tags.empty() ? "" : ", ") + std::string("untagged (length ") + fmt(untagged) + ")";
+    r.line("boundary tags", tags.empty() ? "none" : tags);
+  }
+  else
+    r.line("domain", domain + ", " + cells_per_axis + " base cells");
   if (!d.periodic.empty())
   {
     std::string axes;
@@ -192,6 +224,7 @@ std::string check_report(const Scene& s)
                          + (s.phi_boundary == PhiBoundary::dirichlet ? "dirichlet (phi = -1)"
                                                                      : "neumann")
                          + (d.periodic.empty() ? "" : " on the non-periodic sides")
+                         + (s.phi_tags.empty() ? "" : " on " + join(s.phi_tags))
                          + (s.contact_angle_deg ? ", contact angle " + fmt(*s.contact_angle_deg)
                                                       + " degrees on the walls"
                                                 : ""));

@@ -1,6 +1,7 @@
 // Cross-section checks: every cell (plus a margin) inside the domain, cells disjoint,
 // and the requested interface resolution reachable within max_levels.
 #include "scene/Geometry.h"
+#include "scene/MeshDomain.h"
 #include "scene/Resolution.h"
 #include "scene/Sections.h"
 #include <algorithm>
@@ -18,7 +19,28 @@ std::string domain_text(const Domain& d)
   std::string s;
   for (int a = 0; a < d.dim; ++a)
     s += (a ? " x [" : "[") + fmt(d.lower[a]) + ", " + fmt(d.upper[a]) + "]";
+  if (d.mesh)
+    return "of mesh " + d.mesh->path() + " (bounding box " + s + ")";
   return s;
+}
+
+/// Calls f(q) at points a distance `margin` inside the boundary of a mesh domain: along
+/// each boundary edge with spacing about h, moved by margin along its inward normal.
+template <typename F>
+void for_each_mesh_margin_point(const MeshDomain& m, double margin, double h, F&& f)
+{
+  for (const auto& e : m.boundary())
+  {
+    const double len = std::hypot(e.b[0] - e.a[0], e.b[1] - e.a[1]);
+    const int n = std::max(2, int(std::ceil(len / h)) + 1);
+    for (int i = 0; i < n; ++i)
+    {
+      const double t = double(i) / (n - 1);
+      Point q{e.a[0] + t * (e.b[0] - e.a[0]) + margin * e.n[0],
+              e.a[1] + t * (e.b[1] - e.a[1]) + margin * e.n[1], 0};
+      f(q);
+    }
+  }
 }
 
 /// Calls f(p) on the boundary of the box [lo, hi] with spacing about h (at least `min_n`
@@ -88,6 +110,9 @@ void check_geometry(const Section& top, const Scene& s)
   }
   auto in_inner_box = [&](const Point& p)
   {
+    // A mesh domain: inside the mesh and at least the margin away from its boundary.
+    if (d.mesh)
+      return d.mesh->contains(p.data()) && !d.mesh->near_boundary(p.data(), margin);
     for (int a = 0; a < dim; ++a)
       if (p[a] < lo[a] || p[a] > hi[a])
         return false;
@@ -121,7 +146,15 @@ void check_geometry(const Section& top, const Scene& s)
                       });
 
   // Dense pass along the margin: catches cells that cross it between grid points.
-  if (room && !wetting)
+  if (d.mesh && !wetting)
+    for (std::size_t i = 0; i < r.size(); ++i)
+      for_each_mesh_margin_point(*d.mesh, margin, s.numerics.epsilon / 4,
+                                 [&](const Point& p)
+                                 {
+                                   if (r[i](p[0], p[1], p[2]) <= 0)
+                                     outside(i, p);
+                                 });
+  if (room && !wetting && !d.mesh)
   {
     const double h = s.numerics.epsilon / (dim == 2 ? 4 : 1);
     for (std::size_t i = 0; i < r.size(); ++i)
@@ -148,6 +181,12 @@ void check_geometry(const Section& top, const Scene& s)
     for (int a = 0; a < dim; ++a)
       finer += (a ? ", " : "[")
                + std::to_string(std::lround(std::ldexp(d.resolution[a], levels - max_levels)));
+    if (d.mesh)
+      finer = "a mesh file whose longest edge is at most "
+              + fmt(std::ldexp(base_cell_size(d), max_levels - levels)) + " (now "
+              + fmt(base_cell_size(d)) + ")";
+    else
+      finer = "domain.resolution to " + finer + "]";
     top.section("numerics").section("mesh").fail(
         "max_levels",
         "the interface (width " + fmt(interface_width(s.numerics.epsilon))
@@ -156,8 +195,7 @@ void check_geometry(const Section& top, const Scene& s)
             + fmt(s.numerics.mesh.points_across_interface)
             + " mesh points across it, but max_levels is " + std::to_string(max_levels)
             + "; set numerics.mesh.max_levels to " + std::to_string(levels)
-            + ", or domain.resolution to " + finer
-            + "], or lower numerics.mesh.points_across_interface, or raise numerics.epsilon");
+            + ", or " + finer + ", or lower numerics.mesh.points_across_interface, or raise numerics.epsilon");
   }
 }
 

@@ -1,6 +1,9 @@
 // flow: the two-phase flow coupled to the phase field (section 2.8, 3.4.2). Absent: no flow.
+#include "scene/MeshDomain.h"
 #include "scene/Sections.h"
+#include "scene/Shapes.h"
 #include <algorithm>
+#include <cmath>
 
 namespace cellphase::scene
 {
@@ -35,7 +38,32 @@ const std::vector<std::pair<std::string, WallType>> wall_types{
     {"no_slip", WallType::no_slip},
     {"free_slip", WallType::free_slip},
     {"moving", WallType::moving},
-    {"open", WallType::open}};
+    {"open", WallType::open},
+    {"prescribed", WallType::prescribed}};
+
+/// velocity of a prescribed wall: one formula (or number) per component in x, y, z.
+std::array<std::string, 3> read_profile(const Section& s, int dim)
+{
+  if (!s.has("velocity"))
+    s.fail("velocity", "missing; a prescribed wall needs its velocity profile (a list of "
+                           + std::to_string(dim) + " formulas in x, y, z, e.g. [\"4*y*(1-y)\", 0])");
+  const Value v = s.value("velocity");
+  if (!v.node.IsSequence() || v.node.size() != std::size_t(dim))
+    v.fail("found " + v.found() + ", expected a list of " + std::to_string(dim)
+           + " formulas in x, y, z (numbers or text), one per component");
+  std::array<std::string, 3> out{"0", "0", "0"};
+  for (int c = 0; c < dim; ++c)
+  {
+    const Value e = v.element(std::size_t(c));
+    if (!e.node.IsScalar())
+      e.fail("found " + e.found() + ", expected a formula in x, y, z or a number");
+    out[c] = e.string();
+    const std::string error = check_expression(out[c]);
+    if (!error.empty())
+      e.fail("cannot parse the formula \"" + out[c] + "\": " + error);
+  }
+  return out;
+}
 
 WallSpec read_wall(const Section& walls, const std::string& side, int dim)
 {
@@ -47,12 +75,15 @@ WallSpec read_wall(const Section& walls, const std::string& side, int dim)
     if (w.type == WallType::moving)
       v.fail("a moving wall needs its velocity: write " + side
              + ": {type: moving, velocity: [..]}");
+    if (w.type == WallType::prescribed)
+      v.fail("a prescribed wall needs its velocity profile: write " + side
+             + ": {type: prescribed, velocity: [formula, ...]}");
     return w;
   }
   const Section s = walls.section(side);
   s.allow_only({"type", "velocity"});
   if (!s.has("type"))
-    s.fail("type", "missing; choose one of no_slip, free_slip, moving, open");
+    s.fail("type", "missing; choose one of no_slip, free_slip, moving, open, prescribed");
   w.type = s.choice<WallType>("type", w.type, wall_types);
   if (w.type == WallType::moving)
   {
@@ -62,6 +93,8 @@ WallSpec read_wall(const Section& walls, const std::string& side, int dim)
     const auto u = s.numbers("velocity", {std::size_t(dim)}, any());
     std::copy(u.begin(), u.end(), w.velocity.begin());
   }
+  else if (w.type == WallType::prescribed)
+    w.profile = read_profile(s, dim);
   else if (s.has("velocity"))
     s.fail("velocity", "only a moving wall has a velocity (type is " + std::string(to_string(w.type))
                            + ")");
@@ -70,6 +103,41 @@ WallSpec read_wall(const Section& walls, const std::string& side, int dim)
 
 /// flow.inextensibility (3.67)-(3.72); `enabled: false` keeps the section but switches it
 /// off (e.g. --set flow.inextensibility.enabled=false to compare).
+/// flow.walls of a mesh-file domain: one key per facet tag. free_slip fixes one velocity
+/// component, so its facets must all be perpendicular to one axis; a moving wall's
+/// velocity must lie in the wall.
+void read_tag_walls(const Section& walls, const MeshDomain& mesh, Flow& flow)
+{
+  const auto names = mesh.tag_names();
+  if (names.empty() && !walls.keys().empty())
+    walls.fail(walls.keys()[0], "the mesh file " + mesh.path()
+                                    + " has no facet tags; its whole boundary is no_slip");
+  for (const std::string& key : walls.keys())
+    if (!std::count(names.begin(), names.end(), key))
+      walls.fail(key, "unknown boundary tag; the tags of " + mesh.path() + " are "
+                          + join(names) + " (walls of a mesh domain are named by tag)");
+  for (const std::string& name : names)
+  {
+    if (!walls.has(name))
+      continue;
+    WallSpec w = read_wall(walls, name, 2);
+    const int tag = mesh.tag(name);
+    if (w.type == WallType::free_slip && mesh.normal_axis({tag}) < 0)
+      walls.fail(name, "free_slip fixes the velocity component normal to the wall, so every "
+                       "facet of tag " + name + " must be perpendicular to the x or the y "
+                       "axis (one of them for the whole tag); use no_slip here");
+    if (w.type == WallType::moving && mesh.normal_axis({tag}) < 0)
+      for (const auto& e : mesh.boundary())
+        if (std::count(e.tags.begin(), e.tags.end(), tag)
+            && std::abs(e.n[0] * w.velocity[0] + e.n[1] * w.velocity[1])
+                   > 1e-9 * std::hypot(w.velocity[0], w.velocity[1]))
+          walls.fail(name, "the velocity of a moving wall must lie in the wall, but tag "
+                               + name + " has a facet with normal (" + fmt(e.n[0]) + ", "
+                               + fmt(e.n[1]) + ")");
+    flow.tag_walls[name] = w;
+  }
+}
+
 std::optional<Inextensibility> read_inextensibility(const Section& f, Model m)
 {
   if (!f.has("inextensibility"))
@@ -128,9 +196,12 @@ void read_flow(const Section& top, Scene& s)
     flow.surface_tension = f.number("surface_tension", non_negative());
   }
   const Section walls = f.section("walls");
+  if (s.domain.mesh)
+    read_tag_walls(walls, *s.domain.mesh, flow);
   std::vector<std::string> sides(side_names.begin(), side_names.begin() + 2 * dim);
-  walls.allow_only(sides);
-  for (int i = 0; i < 2 * dim; ++i)
+  if (!s.domain.mesh)
+    walls.allow_only(sides);
+  for (int i = 0; i < 2 * dim && !s.domain.mesh; ++i)
   {
     // A periodic axis has no sides: the flow leaves through one face and enters through
     // the other, so its sides get no condition (and a wall there is a contradiction).

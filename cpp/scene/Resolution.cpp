@@ -1,4 +1,5 @@
 #include "scene/Resolution.h"
+#include "scene/MeshDomain.h"
 #include <algorithm>
 #include <cmath>
 
@@ -12,6 +13,10 @@ double interface_width(double epsilon)
 
 double base_cell_size(const Domain& d)
 {
+  // A mesh file's cells vary in size: its longest edge, so that every cell gets the
+  // requested resolution after the refinement levels.
+  if (d.mesh)
+    return d.mesh->longest_edge();
   double h = 0;
   for (int i = 0; i < d.dim; ++i)
     h = std::max(h, (d.upper[i] - d.lower[i]) / d.resolution[i]);

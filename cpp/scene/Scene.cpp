@@ -1,5 +1,6 @@
 // Names and small queries on the scene data model.
 #include "scene/Scene.h"
+#include "scene/MeshDomain.h"
 #include <cmath>
 #include <algorithm>
 
@@ -8,6 +9,8 @@ namespace cellphase::scene
 
 double Domain::volume() const
 {
+  if (mesh)
+    return mesh->area();
   double v = 1;
   for (int i = 0; i < dim; ++i)
     v *= upper[i] - lower[i];
@@ -71,6 +74,7 @@ const char* to_string(WallType w)
   case WallType::moving: return "moving";
   case WallType::free_slip: return "free_slip";
   case WallType::open: return "open";
+  case WallType::prescribed: return "prescribed";
   }
   return "unknown";
 }

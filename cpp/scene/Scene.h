@@ -4,14 +4,17 @@
 #pragma once
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace cellphase::scene
 {
+class MeshDomain;
 
-/// Rectangle (2D) or box (3D) domain meshed with triangles / tetrahedra.
+/// Rectangle (2D) or box (3D) domain meshed with triangles / tetrahedra, or a 2D mesh
+/// read from a file (domain.mesh; lower/upper are then its bounding box).
 struct Domain
 {
   int dim = 2;
@@ -20,6 +23,9 @@ struct Domain
   std::array<int, 3> resolution{16, 16, 0}; ///< base cells per axis
   /// Periodic axes (0, 1, 2 = x, y, z), sorted: the max face is identified with the min face.
   std::vector<int> periodic;
+  /// domain.mesh as written in the scene (empty: the box) and the mesh read from it.
+  std::string mesh_file;
+  std::shared_ptr<const MeshDomain> mesh;
   bool is_periodic(int axis) const;
   double volume() const;
 };
@@ -159,13 +165,15 @@ enum class WallType
   no_slip,   ///< v = 0
   moving,    ///< v = the wall's tangential velocity
   free_slip, ///< v.n = 0, no tangential stress
-  open       ///< traction-free ((2 eta D - p I) n = 0)
+  open,      ///< traction-free ((2 eta D - p I) n = 0)
+  prescribed ///< v = a profile given by formulas of x, y, z (an inflow)
 };
 
 struct WallSpec
 {
   WallType type = WallType::no_slip;
   std::array<double, 3> velocity{0, 0, 0}; ///< moving walls
+  std::array<std::string, 3> profile;      ///< prescribed: one formula per component
 };
 
 /// Sides of the box in the order of the flow module: left/right (x), bottom/top (y),
@@ -197,7 +205,10 @@ struct Flow
   std::array<double, 3> gravity{0, 0, 0}; ///< body force per unit relative density
   std::array<double, 3> force{0, 0, 0};   ///< constant body force density
   std::optional<double> surface_tension;  ///< sigma (dimensionless); default from Ca
-  std::array<WallSpec, 6> walls;          ///< by side, see side_names
+  std::array<WallSpec, 6> walls;          ///< by side, see side_names (box domains)
+  /// Mesh-file domains: by tag name; every tag not listed is no_slip, and so is the
+  /// boundary that carries no tag.
+  std::map<std::string, WallSpec> tag_walls;
   std::map<std::string, std::string> petsc; ///< options of the flow solver (prefix flow_)
   std::optional<Inextensibility> inextensibility; ///< absent: the membrane may stretch
 };
@@ -209,6 +220,8 @@ struct Scene
   std::string resolved_yaml;         ///< the scene's YAML after --set overrides (for checkpoints)
   Domain domain;
   PhiBoundary phi_boundary = PhiBoundary::dirichlet;
+  /// Mesh-file domains: the tags where phi = -1 holds (empty: the whole boundary).
+  std::vector<std::string> phi_tags;
   /// cahn_hilliard: contact angle (degrees, through phi = +1) on every wall (2.8)
   std::optional<double> contact_angle_deg;
   std::vector<Cell> cells;
