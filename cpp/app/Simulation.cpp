@@ -64,7 +64,7 @@ struct MeshSpaces
 Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart,
                        std::vector<std::unique_ptr<SubProblem>> extra)
     : scene_(scene), comm_(comm), restart_(restart), adaptive_(scene, comm),
-      split_(build_sub_problems(scene, comm)),
+      split_(build_sub_problems(scene, comm)), initial_(scene::make_plan(scene).initial),
       checkpoints_(comm, scene.output.directory, scene.output.checkpoints.keep)
 {
   for (auto& e : extra)
@@ -77,35 +77,33 @@ Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart,
 
 void Simulation::check_plan() const
 {
-  // The declarations must be the plan's lists, and every read field someone's or initial.
-  const auto initial = scene::make_plan(scene_).initial;
-  std::set<std::string> written(initial.begin(), initial.end());
+  // The declarations must be the plan's lists (each field declared by the one that writes
+  // it), and the split with any extra sub-problems must close as the scene's plan does.
+  scene::Plan plan;
+  plan.initial = initial_;
   for (const auto& sub : split_)
+  {
     for (const auto& f : sub->writes())
-    {
       if (!fields_.declared(f) || fields_.info(f).owner != sub->name())
         throw std::logic_error(sub->name() + " writes " + f + " but does not declare it");
-      written.insert(f);
-    }
+    plan.steps.push_back({sub->name(), sub->description(), sub->reads(), sub->writes()});
+  }
   for (const auto& name : fields_.names())
   {
-    const auto& w = split_.end() != std::find_if(split_.begin(), split_.end(), [&](const auto& s)
-                                                 { return s->name() == fields_.info(name).owner; });
-    if (!w || !written.count(name))
+    const auto owner = std::find_if(split_.begin(), split_.end(), [&](const auto& s)
+                                    { return s->name() == fields_.info(name).owner; });
+    if (owner == split_.end() || !std::count((*owner)->writes().begin(), (*owner)->writes().end(), name))
       throw std::logic_error("field " + name + " is declared but not in its owner's writes");
   }
-  for (const auto& sub : split_)
-    for (const auto& f : sub->reads())
-      if (!written.count(f))
-        throw std::invalid_argument("sub-problem " + sub->name() + " reads field " + f
-                                    + ", which no sub-problem of the split writes");
+  const std::string problem = scene::plan_problem(plan);
+  if (!problem.empty())
+    throw std::invalid_argument(problem);
 }
 
 void Simulation::order_attach()
 {
   // Topological order of attach_reads -> owners (a cycle is a programming error).
-  const auto initial = scene::make_plan(scene_).initial;
-  std::set<std::string> ready(initial.begin(), initial.end());
+  std::set<std::string> ready(initial_.begin(), initial_.end());
   std::vector<SubProblem*> pending;
   for (auto& s : split_)
     pending.push_back(s.get());
@@ -314,7 +312,7 @@ std::unique_ptr<FieldWriter> Simulation::make_writer(const LoopState& start) con
 {
   // A restart continues the index of the interrupted run, cut back to the checkpoint.
   return std::make_unique<FieldWriter>(
-      comm_, scene_.output.directory, scene_.output.fields,
+      comm_, scene_.output.directory,
       restart_ ? std::optional<double>(start.time) : std::nullopt);
 }
 

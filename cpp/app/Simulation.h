@@ -94,6 +94,7 @@ private:
   AdaptiveMesh adaptive_;
   FieldRegistry fields_;
   std::vector<std::unique_ptr<SubProblem>> split_; ///< in the order they step
+  std::vector<std::string> initial_; ///< fields with initial data (the phase fields)
   std::vector<SubProblem*> attach_order_;
   CheckpointStore checkpoints_;
   std::unique_ptr<ObservablesCsv> csv_;

@@ -71,8 +71,8 @@ void prune(pugi::xml_node domain, double time)
 } // namespace
 
 FieldWriter::FieldWriter(MPI_Comm comm, const std::string& directory,
-                         std::vector<std::string> fields, std::optional<double> resume_after_time)
-    : comm_(comm), directory_(directory), names_(std::move(fields))
+                         std::optional<double> resume_after_time)
+    : comm_(comm), directory_(directory)
 {
   if (rank_of(comm_) != 0)
     return;

@@ -26,10 +26,10 @@ class FieldWriter
 public:
   /// Index `directory`/`index_name` with the data files in `directory`/fields/. With
   /// resume_after_time (a restart), the existing index is kept up to that time and continued.
-  FieldWriter(MPI_Comm comm, const std::string& directory, std::vector<std::string> fields,
+  FieldWriter(MPI_Comm comm, const std::string& directory,
               std::optional<double> resume_after_time = std::nullopt);
   ~FieldWriter();
-  /// Append the fields at `time` (step `step`); a second write of the same time on the same
+  /// Append the fields (keyed by their output names) at `time` (step `step`); a second write of the same time on the same
   /// mesh is skipped.
   void write(const FieldMap& fields, double time, int step);
   std::string index_path() const { return directory_ + "/fields.xdmf"; }
@@ -40,7 +40,6 @@ private:
 
   MPI_Comm comm_;
   std::string directory_;
-  std::vector<std::string> names_;
   std::unique_ptr<pugi::xml_document> index_; ///< rank 0 only
   std::shared_ptr<const Mesh> source_mesh_;  ///< mesh of the last written fields
   std::shared_ptr<Space> p1_;                ///< P1 on its uniform refinement

@@ -33,15 +33,10 @@ StepTimings MembraneUnionSubProblem::step(double)
     return t;
   auto t0 = Clock::now();
   // (7.14) with the phase fields of the last step, in place (the flow holds this function).
-  auto u = fields_->get("membrane.phi_cells")->x()->mutable_array();
-  auto first = fields_->get(phase_fields_[0])->x()->array();
-  std::copy(first.begin(), first.end(), u.begin());
-  for (std::size_t k = 1; k < phase_fields_.size(); ++k)
-  {
-    auto x = fields_->get(phase_fields_[k])->x()->array();
-    for (std::size_t i = 0; i < u.size(); ++i)
-      u[i] = std::max(u[i], x[i]);
-  }
+  std::vector<std::shared_ptr<const Function>> phis;
+  for (const auto& f : phase_fields_)
+    phis.push_back(fields_->get(f));
+  update_union(phis, *fields_->get("membrane.phi_cells"));
   t.assemble = seconds_since(t0);
   return t;
 }

@@ -12,4 +12,7 @@ namespace cellphase
 /// One field is returned as it is (no copy).
 std::shared_ptr<const Function> union_phase_field(
     const std::vector<std::shared_ptr<const Function>>& phis);
+
+/// out = max_i phis[i] dof by dof, in place (out lives on the fields' space).
+void update_union(const std::vector<std::shared_ptr<const Function>>& phis, Function& out);
 } // namespace cellphase
