@@ -23,7 +23,9 @@ Usage:
                                                continue the run in RUNDIR from its newest
                                                valid checkpoint (any number of MPI ranks)
   cellphase check SCENE [--set KEY=VALUE ...]  validate SCENE and print the derived numbers,
-                                               mesh resolution and expected size, then exit
+                                               mesh resolution, expected size and the
+                                               operator split (what each sub-problem
+                                               reads and writes), then exit
   cellphase --help                             this text
   cellphase --version
 
@@ -35,7 +37,9 @@ Cells are addressed by index: --set cells.0.radius=0.8.
 
 A run writes into output.directory:
   observables.csv   one row per step: time, volume, membrane length/area, energies,
-                    centre of mass, circularity, dofs, wall time per part of the step
+                    centre of mass, circularity, dofs, wall time per part of the step;
+                    with several cells also per-cell columns (<cell>.volume, ...),
+                    interaction_energy and overlap_max
   fields.xdmf/.h5   the fields every output.every steps (open in ParaView); a restarted
                     run writes fields.restart-<step>.xdmf
   checkpoints/      checkpoint-<step>.cpk every output.checkpoints.every steps and at the
