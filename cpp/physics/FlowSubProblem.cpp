@@ -1,10 +1,15 @@
 #include "physics/FlowSubProblem.h"
 #include "app/FlowSetup.h"
+#include "physics/FormTable.h"
+#include "solve/Assemble.h"
+#include "util/Clock.h"
+#include <dolfinx/fem/assembler.h>
 
 namespace cellphase
 {
 FlowSubProblem::FlowSubProblem(scene::PlanStep step, const scene::Scene& scene, MPI_Comm comm)
-    : SubProblem(std::move(step)), scene_(scene), flow_(flow_parameters(scene), comm)
+    : SubProblem(std::move(step)), scene_(scene), comm_(comm), groups_(scene::cell_groups(scene)),
+      flow_(flow_parameters(scene), comm)
 {
 }
 
@@ -22,28 +27,69 @@ void FlowSubProblem::declare(FieldRegistry& fields)
 
 void FlowSubProblem::attach(FieldRegistry& fields)
 {
-  auto phi = fields.get("cell.phi");
   MembraneFields membrane;
   membrane.phi_cells = fields.find("membrane.phi_cells");
   membrane.concentration = fields.find("membrane.c");
-  // v^n moved from the last mesh or read from a checkpoint; null: the fluid at rest.
-  flow_.attach(phi->function_space()->mesh(), phi, fields.get("cell.potential"),
-               fields.find("flow.v"), membrane);
+  auto v = fields.find("flow.v"); // moved from the last mesh or from a checkpoint; null: at rest
+  if (groups_.size() == 1)
+  {
+    auto phi = fields.get("cell.phi");
+    flow_.attach(phi->function_space()->mesh(), phi, fields.get("cell.potential"), v, membrane);
+  }
+  else
+  {
+    // eta and rho of phi_cells = max_i phi_i, no force in the (mu, phi) slot of the forms
+    // (mu = 0): the summed force comes as f_membrane (7.12).
+    auto phi_cells = fields.get("membrane.phi_cells");
+    auto mesh = phi_cells->function_space()->mesh();
+    flow_.attach(mesh, phi_cells, nullptr, v, membrane);
+    auto Vf = flow_.membrane_force()->function_space();
+    const auto forms = interface_force_forms(mesh->topology().dim());
+    ConstantMap c{{"capillary", std::make_shared<const Constant>(scene::flow_capillary(scene_))}};
+    force_forms_.clear();
+    for (const auto& g : groups_)
+      force_forms_.push_back(compat::create_form(
+          *forms.L, {Vf}, {{"phi", fields.get(g.prefix + ".phi")}, {"mu", fields.get(g.prefix + ".potential")}},
+          c));
+    auto a = compat::create_form(*forms.a, {Vf, Vf}, {}, {});
+    force_mass_ = create_matrix(*a);
+    assemble_matrix(force_mass_->mat(), *a, {});
+    force_solver_ = std::make_unique<LinearSolver>(comm_, "force_", std::map<std::string, std::string>{},
+                                                   Symmetry::positive_definite);
+    force_solver_->set_operator(force_mass_->mat());
+  }
   fields.set("flow.v", flow_.velocity());
   fields.set("flow.p", flow_.pressure());
   if (flow_.multiplier())
     fields.set("flow.lambda", flow_.multiplier());
 }
 
+double FlowSubProblem::project_interface_force()
+{
+  auto t0 = Clock::now();
+  auto f = flow_.membrane_force();
+  dolfinx::la::Vector<T> b(f->function_space()->dofmap()->index_map,
+                           f->function_space()->dofmap()->index_map_bs());
+  b.set(0.0);
+  for (const auto& L : force_forms_)
+    dolfinx::fem::assemble_vector(b.mutable_array(), *L);
+  b.scatter_rev(std::plus<T>());
+  force_solver_->solve(b, *f->x(), "the projection of the cells' interface force (7.12)");
+  return seconds_since(t0);
+}
+
 StepTimings FlowSubProblem::step(double dt)
 {
-  flow_.set_area_target(fields_->scalar("cell.area_target")); // (3.69), fixed at the start
-  const FlowTimings f = flow_.step(dt);
   StepTimings t;
-  t.assemble = f.assemble;
+  if (groups_.size() == 1)
+    flow_.set_area_target(fields_->scalar("cell.area_target")); // (3.69), fixed at the start
+  else
+    t.assemble += project_interface_force(); // of phi^n, mu^n as the single-cell force
+  const FlowTimings f = flow_.step(dt);
+  t.assemble += f.assemble;
   t.factorise = f.factorise;
   t.solve = f.solve;
-  t.flow = f.assemble + f.factorise + f.solve;
+  t.flow = t.assemble + f.factorise + f.solve;
   return t;
 }
 

@@ -4,7 +4,9 @@
 #pragma once
 #include "core/SubProblem.h"
 #include "physics/FlowModule.h"
+#include "scene/Plan.h"
 #include "scene/Scene.h"
+#include "solve/LinearSolver.h"
 #include <memory>
 
 namespace cellphase
@@ -23,8 +25,17 @@ public:
   int factorisations() const override { return flow_.factorisations(); }
 
 private:
+  /// Several cells: f_membrane <- L2 projection of sum_i capillary mu_i grad phi_i (7.12).
+  double project_interface_force();
+
   const scene::Scene& scene_;
+  MPI_Comm comm_;
+  std::vector<scene::CellGroup> groups_;
   FlowModule flow_;
   FieldRegistry* fields_ = nullptr;
+  // The projection of the summed force (several cells only), rebuilt on every mesh
+  std::vector<std::shared_ptr<Form>> force_forms_;
+  std::unique_ptr<dolfinx::la::petsc::Matrix> force_mass_;
+  std::unique_ptr<LinearSolver> force_solver_;
 };
 } // namespace cellphase

@@ -9,6 +9,8 @@
 #include "flow_inextensible_3d.h"
 #include "concentration_2d.h"
 #include "concentration_3d.h"
+#include "interface_force_2d.h"
+#include "interface_force_3d.h"
 #include "helfrich_hm1_2d.h"
 #include "helfrich_hm1_3d.h"
 #include "helfrich_l2_2d.h"
@@ -175,5 +177,12 @@ ConcentrationForms concentration_forms(int dim)
     f.space = functionspace_form_concentration_3d_a;
   }
   return f;
+}
+
+InterfaceForceForms interface_force_forms(int dim)
+{
+  if (dim == 2)
+    return {form_interface_force_2d_a, form_interface_force_2d_L};
+  return {form_interface_force_3d_a, form_interface_force_3d_L};
 }
 } // namespace cellphase

@@ -83,7 +83,15 @@ struct ConcentrationForms
   ufcx_space_fn space = nullptr; ///< "c" (P2, the trial function), "c0", "phi", "v"
 };
 
+/// forms/interface_force.py: the projection of sum_i mu_i grad phi_i (7.12).
+struct InterfaceForceForms
+{
+  ufcx_form* a = nullptr; ///< vector P2 mass matrix
+  ufcx_form* L = nullptr; ///< capillary mu grad phi of one cell (coefficients "phi", "mu")
+};
+
 ModelForms model_forms(scene::Model model, int dim);
+InterfaceForceForms interface_force_forms(int dim);
 ObservableForms observable_forms(int dim);
 /// forms/flow.py, or with `inextensible` forms/flow_inextensible.py.
 FlowForms flow_forms(int dim, bool inextensible = false);

@@ -8,11 +8,12 @@ namespace
 {
 bool advected(Model m) { return m != Model::allen_cahn && m != Model::allen_cahn_volume; }
 
-bool has_membrane_union(const Scene& s) { return s.flow && s.flow->inextensibility.has_value(); }
+/// phi_cells (7.14) for the inextensibility, and with several cells for the flow's eta, rho.
+bool has_membrane_union(const Scene& s);
 
 bool has_concentration(const Scene& s)
 {
-  return has_membrane_union(s) && s.flow->inextensibility->concentration.has_value();
+  return s.flow && s.flow->inextensibility && s.flow->inextensibility->concentration.has_value();
 }
 
 std::vector<std::string> qualified(const std::string& group, const std::vector<std::string>& f)
@@ -61,18 +62,28 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     steps[interaction.name] = interaction;
   }
   if (has_membrane_union(s))
-    steps["membrane"] = {"membrane", "membrane union module (phi_cells = max_i phi_i, 7.14)",
-                         {"cell.phi"}, {"membrane.phi_cells"}};
+  {
+    PlanStep membrane{"membrane", "membrane union module (phi_cells = max_i phi_i, 7.14)", {},
+                      {"membrane.phi_cells"}};
+    for (const auto& g : groups)
+      membrane.reads.push_back(g.prefix + ".phi");
+    steps[membrane.name] = membrane;
+  }
   if (s.flow)
   {
     PlanStep flow{"flow",
                   s.flow->inextensibility ? "flow module (with inextensibility, 3.67-3.68)"
                                           : "flow module",
-                  {"cell.phi", "cell.potential"},
-                  {"flow.v", "flow.p"}};
-    if (has_membrane_union(s))
-    {
+                  {}, {"flow.v", "flow.p"}};
+    // With several cells: eta(phi_cells), rho(phi_cells) and the summed force (7.12).
+    if (groups.size() > 1)
       flow.reads.push_back("membrane.phi_cells");
+    for (const auto& g : groups)
+      flow.reads.insert(flow.reads.end(), {g.prefix + ".phi", g.prefix + ".potential"});
+    if (s.flow->inextensibility)
+    {
+      if (groups.size() == 1)
+        flow.reads.push_back("membrane.phi_cells");
       flow.writes.push_back("flow.lambda");
     }
     if (has_concentration(s))
@@ -83,6 +94,10 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     steps["concentration"] = {"concentration", "membrane concentration module (3.70)",
                               {"membrane.phi_cells", "flow.v"}, {"membrane.c"}};
   return steps;
+}
+bool has_membrane_union(const Scene& s)
+{
+  return s.flow && (s.flow->inextensibility || cell_groups(s).size() > 1);
 }
 } // namespace
 

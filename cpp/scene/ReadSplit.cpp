@@ -10,9 +10,18 @@ void check_split(const Section& top, const Scene& s)
 {
   const Section n = top.section("numerics");
   if (s.flow && cell_groups(s).size() > 1)
-    top.fail("flow", "the flow is coupled to one phase field; this scene has "
-                     + std::to_string(cell_groups(s).size()) + " (one per cell). Put the cells "
-                     "into one phase field with the same `group:` in each cell");
+  {
+    // The summed interface force (7.12) is built for the membrane models; Cahn-Hilliard's
+    // flux J (2.8) and the global area (3.69) are of one phase field.
+    if (s.phase_field.model == Model::cahn_hilliard)
+      top.fail("flow", "with several phase fields the flow is coupled to the Helfrich models "
+                       "only (chapter 7); for cahn_hilliard put the cells into one phase field "
+                       "with the same `group:` in each cell");
+    if (s.flow->inextensibility && s.flow->inextensibility->global_area)
+      top.section("flow").section("inextensibility").fail(
+          "global_area", "restores the area of one phase field (3.69); with several cells "
+                         "use each cell's area penalty (cells[].penalty_area) instead");
+  }
   if (s.numerics.split)
   {
     const auto available = default_split(s);
