@@ -48,9 +48,10 @@ void FlowSubProblem::attach(FieldRegistry& fields)
     ConstantMap c{{"capillary", std::make_shared<const Constant>(scene::flow_capillary(scene_))}};
     force_forms_.clear();
     for (const auto& g : groups_)
-      force_forms_.push_back(compat::create_form(
-          *forms.L, {Vf}, {{"phi", fields.get(g.prefix + ".phi")}, {"mu", fields.get(g.prefix + ".potential")}},
-          c));
+      force_forms_.push_back(compat::create_form(*forms.L, {Vf},
+                                                 {{"phi", fields.get(g.prefix + ".phi")},
+                                                  {"mu", fields.get(g.prefix + ".potential")}},
+                                                 c));
     auto a = compat::create_form(*forms.a, {Vf, Vf}, {}, {});
     force_mass_ = create_matrix(*a);
     assemble_matrix(force_mass_->mat(), *a, {});
@@ -105,5 +106,6 @@ void FlowSubProblem::observe(Observation& row)
                                ? scene::flow_capillary(scene_) * v.energy_ch
                                : v.total_energy;
   v.total_with_kinetic = v.kinetic_energy + interface;
+  row.extra.push_back({"flow_dofs", double(flow_.num_dofs())}); // the rest of `dofs` is the cells'
 }
 } // namespace cellphase

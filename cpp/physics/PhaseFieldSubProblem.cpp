@@ -33,8 +33,8 @@ void PhaseFieldSubProblem::declare(FieldRegistry& fields)
   // which is recomputed from phi and mu on every mesh.
   const std::string potential = field("potential");
   if (std::count(writes().begin(), writes().end(), potential))
-    fields.declare({potential, "potential" + group_.label_suffix, name(), FieldSpace::scalar_p2, Transfer::recompute,
-                    false});
+    fields.declare({potential, "potential" + group_.label_suffix, name(), FieldSpace::scalar_p2,
+                    Transfer::recompute, false});
 }
 
 void PhaseFieldSubProblem::attach(FieldRegistry& fields)

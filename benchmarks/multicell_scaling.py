@@ -1,0 +1,145 @@
+"""Time per step against the number of cells (issue: many cells on a modular core).
+
+N = 1, 2, 4, ... circles of radius 0.25 on a square lattice of spacing 0.8 (a fixed area
+fraction: the domain grows with N), each its own phase field (helfrich_hm1 with the
+repulsive interaction), in a Stokes flow with no-slip walls, serial. Every cell is solved on
+the one mesh refined around all cells (there are no per-cell meshes yet), so each cell's
+system grows with N as well: this measures how far that is from cost linear in N.
+
+Writes benchmarks/results/multicell-scaling.{csv,md,png}:
+n_cells,dofs_flow,dofs_cells_total,wall_per_step_s,cells_part_s,flow_s,remesh_s
+(medians over the steps after the first), and the fitted exponents.
+
+    /usr/bin/python3 benchmarks/multicell_scaling.py [--cells 1 2 4 8] [--steps 6]
+"""
+import argparse
+import csv
+import math
+import pathlib
+import statistics
+import subprocess
+import time
+
+import yaml
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+EXE = ROOT / "build" / "cellphase"
+RESULTS = ROOT / "benchmarks" / "results"
+OUT = ROOT / "output" / "benchmarks" / "multicell"
+
+
+def scene(n, steps):
+    side = math.ceil(math.sqrt(n))
+    rows = math.ceil(n / side)
+    spacing = 0.8
+    cells = [{"name": f"c{i}", "shape": "circle", "radius": 0.25,
+              "center": [spacing * (i % side + 0.5), spacing * (i // side + 0.5)]}
+             for i in range(n)]
+    s = {
+        "domain": {"lower": [0, 0], "upper": [spacing * side, spacing * rows],
+                   "resolution": [6 * side, 6 * rows]},
+        "cells": cells,
+        "phase_field": {"model": "helfrich_hm1", "mobility": 1e-3, "penalty_area": 100},
+        "numbers": {"Be": 10.0},
+        "interaction": {"In": 0.1},
+        "flow": {"equations": "stokes", "force": [1.0, 0.0]},
+        "numerics": {"epsilon": 0.04, "dt": 5e-3, "end_time": steps * 5e-3,
+                     "mesh": {"remesh_every": 3, "points_across_interface": 4}},
+        "output": {"directory": str(OUT / f"n{n}"), "every": 0, "progress": False},
+    }
+    if n == 1:
+        del s["interaction"]  # nothing to interact with
+    return s
+
+
+def measure(n, steps):
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / f"n{n}.yaml"
+    path.write_text(yaml.safe_dump(scene(n, steps)))
+    t0 = time.time()
+    proc = subprocess.run([str(EXE), "run", str(path)], capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise SystemExit(f"cellphase failed on {path}:\n{proc.stdout}{proc.stderr}")
+    wall = time.time() - t0
+    with open(OUT / f"n{n}" / "observables.csv") as f:
+        rows = list(csv.DictReader(f))[2:]  # steps 2.. (step 1 builds the solvers)
+    col = lambda k: [float(r[k]) for r in rows]  # noqa: E731
+    total = [a + f + s + m for a, f, s, m in zip(col("wall_assembly"), col("wall_factorise"),
+                                                 col("wall_solve"), col("wall_remesh"))]
+    flow = col("wall_flow")
+    cells = [a + f + s - w for a, f, s, w in zip(col("wall_assembly"), col("wall_factorise"),
+                                                 col("wall_solve"), flow)]
+    dofs, flow_dofs = int(float(rows[-1]["dofs"])), int(float(rows[-1]["flow_dofs"]))
+    return {"n_cells": n, "dofs_flow": flow_dofs, "dofs_cells_total": dofs - flow_dofs,
+            "wall_per_step_s": statistics.median(total), "cells_part_s": statistics.median(cells),
+            "flow_s": statistics.median(flow),
+            "remesh_s": statistics.mean(col("wall_remesh")), "run_s": wall}
+
+
+def exponent(rows, key, lo):
+    pts = [(math.log(r["n_cells"]), math.log(r[key])) for r in rows if r["n_cells"] >= lo]
+    if len(pts) < 2:
+        return float("nan")
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    return sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--cells", type=int, nargs="+", default=[1, 2, 4, 8])
+    p.add_argument("--steps", type=int, default=6)
+    a = p.parse_args()
+    rows = []
+    for n in a.cells:
+        r = measure(n, a.steps)
+        rows.append(r)
+        print(f"N = {n:3d}: {r['dofs_cells_total']:8d} cell dofs, {r['dofs_flow']:7d} flow dofs, "
+              f"{r['wall_per_step_s']:.3f} s/step (cells {r['cells_part_s']:.3f}, flow "
+              f"{r['flow_s']:.3f}, remesh {r['remesh_s']:.3f}), run {r['run_s']:.0f} s", flush=True)
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    keys = ["n_cells", "dofs_flow", "dofs_cells_total", "wall_per_step_s", "cells_part_s",
+            "flow_s", "remesh_s"]
+    with open(RESULTS / "multicell-scaling.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    lo = 4 if max(a.cells) > 4 else 1
+    e_step, e_cells = exponent(rows, "wall_per_step_s", lo), exponent(rows, "cells_part_s", lo)
+    e_dofs = exponent(rows, "dofs_cells_total", lo)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    n = [r["n_cells"] for r in rows]
+    fig, ax = plt.subplots(figsize=(5, 4))
+    for key, label in [("wall_per_step_s", f"whole step (exponent {e_step:.2f})"),
+                       ("cells_part_s", f"cells' part (exponent {e_cells:.2f})"),
+                       ("flow_s", "flow")]:
+        ax.loglog(n, [r[key] for r in rows], "o-", label=label)
+    ax.loglog(n, [rows[0]["cells_part_s"] * x for x in n], "k:", label="linear in N")
+    ax.set_xlabel("cells N")
+    ax.set_ylabel("wall time per step [s]")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(RESULTS / "multicell-scaling.png", dpi=120)
+    lines = ["# Time per step against the number of cells", "",
+             f"{time.strftime('%Y-%m-%d')}, this machine (2 cores, shared), serial, "
+             f"`benchmarks/multicell_scaling.py --cells {' '.join(map(str, a.cells))} --steps {a.steps}`.",
+             "One mesh refined around all cells; every cell's phase field is solved on it.", "",
+             "| N | flow dofs | cell dofs (all) | s/step | cells' part s | flow s | remesh s |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['n_cells']} | {r['dofs_flow']} | {r['dofs_cells_total']} | "
+                     f"{r['wall_per_step_s']:.3f} | {r['cells_part_s']:.3f} | {r['flow_s']:.3f} | "
+                     f"{r['remesh_s']:.3f} |")
+    lines += ["", f"Fitted exponents from N = {lo}: whole step {e_step:.2f}, cells' part "
+              f"{e_cells:.2f}, cell dofs {e_dofs:.2f} (targets: cells' part <= 1.1, step <= 1.3).",
+              f"Flow share of the step at the largest N: "
+              f"{rows[-1]['flow_s'] / rows[-1]['wall_per_step_s']:.0%}.", "",
+              "![time per step](multicell-scaling.png)", ""]
+    (RESULTS / "multicell-scaling.md").write_text("\n".join(lines))
+    print("\n".join(lines[-6:]))
+
+
+if __name__ == "__main__":
+    main()
