@@ -5,6 +5,8 @@ Writes PNG files into RUN_DIR/plots (or --out):
   observables.png  volume, membrane length/area, energies, circularity, centre of
                    mass and dofs over time (panels whose data are all zero are left out)
   timings.png      wall time of each step, stacked by part (assembly, solve, ...)
+  cells.png        runs with several cells: each cell's volume change and centre path,
+                   the largest overlap of two cells and the interaction energy
   level_sets.png   2D runs with fields.xdmf: the zero level set of phi at every
                    output time, coloured by time (level_sets_NAME.png for other fields)
 """
@@ -64,6 +66,33 @@ def plot_observables(obs, dim, title, path):
     for ax in axes.flat[len(panels):]:
         ax.set_visible(False)
     fig.suptitle(f"{title}: observables")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def cell_names(obs):
+    """The cells of a run with several phase fields (columns <cell>.volume), in order."""
+    return [c[:-len(".volume")] for c in obs if c.endswith(".volume")]
+
+
+def plot_cells(obs, title, path):
+    cells = cell_names(obs)
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4), constrained_layout=True)
+    for cell in cells:
+        axes[0].plot(obs["time"], relative_change(obs[f"{cell}.volume"]), label=cell)
+        axes[1].plot(obs[f"{cell}.center_x"], obs[f"{cell}.center_y"], label=cell)
+        axes[1].plot(obs[f"{cell}.center_x"][-1], obs[f"{cell}.center_y"][-1], "k.")
+    axes[0].set(title="cell volume", xlabel="time", ylabel="relative change")
+    axes[1].set(title="centre of each cell (dot: end)", xlabel="x", ylabel="y")
+    axes[1].set_aspect("equal", adjustable="datalim")
+    axes[2].plot(obs["time"], obs["overlap_max"], label="overlap max")
+    if np.any(obs["interaction_energy"] != 0):
+        axes[2].plot(obs["time"], obs["interaction_energy"], label="interaction energy (7.5)")
+    axes[2].set(title="contact", xlabel="time")
+    for ax in axes:
+        if len(ax.get_lines()) > 1 and len(cells) <= 10:
+            ax.legend(fontsize=8)
+    fig.suptitle(f"{title}: {len(cells)} cells")
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
@@ -136,7 +165,11 @@ def main(argv=None):
         return fail(e)
     if len(obs["time"]) == 0:
         return fail(f"{run_dir / 'observables.csv'}: no complete rows")
-    missing = [f for f in args.fields if f not in names]
+    # With several cells, "phi" stands for every phi_<cell>.
+    fields = [g for f in args.fields
+              for g in ([f] if f in names or not has_fields
+                        else [n for n in names if n.startswith(f + "_")] or [f])]
+    missing = [f for f in fields if f not in names]
     if has_fields and missing:
         return fail(f"no field {', '.join(missing)} in {run_dir / 'fields.xdmf'} "
                     f"(it has: {', '.join(names) or 'none'})")
@@ -148,13 +181,16 @@ def main(argv=None):
     plot_timings(obs, title, out / "timings.png")
     print(out / "observables.png")
     print(out / "timings.png")
+    if cell_names(obs) and "overlap_max" in obs:
+        plot_cells(obs, title, out / "cells.png")
+        print(out / "cells.png")
 
     if not has_fields:
         print(f"note: {run_dir / 'fields.xdmf'} not found: plotted the observables only")
     elif dim != 2:
         print("note: level sets are plotted for 2D runs only")
     else:
-        for field in args.fields:
+        for field in fields:
             path = out / ("level_sets.png" if field == "phi" else f"level_sets_{field}.png")
             try:
                 plot_level_sets(run_dir, field, title, path)

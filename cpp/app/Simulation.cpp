@@ -318,18 +318,21 @@ std::unique_ptr<FieldWriter> Simulation::make_writer(const LoopState& start) con
 
 FieldMap Simulation::output_fields() const
 {
+  // "phi" is the field labelled phi, or with several cells every phi_<group>.
   FieldMap out;
+  auto add = [&](const std::string& label)
+  {
+    const std::string name = fields_.by_label(label);
+    if (auto f = name.empty() ? nullptr : fields_.find(name))
+      out[label] = f;
+  };
   for (const auto& label : scene_.output.fields)
   {
-    // "phi" is the field labelled phi, or with several cells every phi_<group>.
-    const std::string exact = fields_.by_label(label);
-    for (const auto& name : fields_.names())
-    {
-      const std::string& l = fields_.info(name).label;
-      if (exact.empty() ? l.rfind(label + "_", 0) == 0 : name == exact)
-        if (auto f = fields_.find(name))
-          out[l] = f;
-    }
+    if (!fields_.by_label(label).empty())
+      add(label);
+    else
+      for (const auto& g : scene::cell_groups(scene_))
+        add(label + g.label_suffix);
   }
   return out;
 }

@@ -186,3 +186,14 @@ def test_many_cells_with_flow_restart_bit_for_bit_and_two_ranks_agree(tmp_path):
             continue
         for a, b in zip(whole[k], two[k]):
             assert abs(a - b) <= 1e-8 * max(abs(a), 1.0), f"{k}: 1 rank {a}, 2 ranks {b}"
+
+
+def test_plot_run_draws_the_cells(tmp_path):
+    scene = yaml.safe_load(yaml.safe_dump(TWO))
+    scene["numerics"]["end_time"] = 0.003
+    run_scene(scene, tmp_path)
+    root = __import__("pathlib").Path(__file__).parents[2]
+    proc = subprocess.run(["/usr/bin/python3", str(root / "python" / "plot_run.py"),
+                           str(tmp_path / "out")], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "out" / "plots" / "cells.png").stat().st_size > 10000
