@@ -92,7 +92,8 @@ void Simulation::check_plan() const
   {
     const auto owner = std::find_if(split_.begin(), split_.end(), [&](const auto& s)
                                     { return s->name() == fields_.info(name).owner; });
-    if (owner == split_.end() || !std::count((*owner)->writes().begin(), (*owner)->writes().end(), name))
+    if (owner == split_.end()
+        || !std::count((*owner)->writes().begin(), (*owner)->writes().end(), name))
       throw std::logic_error("field " + name + " is declared but not in its owner's writes");
   }
   const std::string problem = scene::plan_problem(plan);
