@@ -3,6 +3,7 @@
 #include "app/SubProblems.h"
 #include "io/FieldSnapshot.h"
 #include "io/Progress.h"
+#include "compat/Resample.h"
 #include "mesh/FieldTransfer.h"
 #include "physics/PhaseFieldSubProblem.h"
 #include "scene/Check.h"
@@ -44,21 +45,19 @@ std::vector<std::string> split_names(const std::string& text)
 /// their sub-problem's name.
 constexpr int checkpoint_format = 2;
 
-/// The spaces of the registry's kinds on one mesh (fields of one kind share their space).
-struct MeshSpaces
+/// A cell's own mesh is cut around the nodes where its phi exceeds this (5.4 epsilon out
+/// from the zero level set), grown by numerics.mesh.own_margin.
+constexpr double own_band_level = -0.999;
+
+/// The mesh-independent measure of a cell phase field through a change of its mesh:
+/// int (1 + phi) is kept, so int phi changes by |old mesh| - |new mesh| (zero on the
+/// shared mesh, which always covers the domain).
+double mesh_volume(std::shared_ptr<const Space> V)
 {
-  std::shared_ptr<Mesh> mesh;
-  int dim;
-  std::shared_ptr<Space> scalar, vector;
-  std::shared_ptr<Space> of(FieldSpace kind)
-  {
-    if (kind == FieldSpace::scalar_p2)
-      return scalar ? scalar : scalar = create_p2_space(mesh, dim);
-    if (kind == FieldSpace::vector_p2)
-      return vector ? vector : vector = create_vector_p2_space(mesh, dim);
-    throw std::logic_error("fields of space 'other' are built by their owners");
-  }
-};
+  auto one = std::make_shared<Function>(std::const_pointer_cast<Space>(V));
+  one->x()->set(1.0);
+  return integral_of(one);
+}
 } // namespace
 
 Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart,
@@ -71,6 +70,9 @@ Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart,
     split_.push_back(std::move(e));
   for (auto& sub : split_)
     sub->declare(fields_);
+  for (const auto& key : fields_.mesh_keys())
+    if (!key.empty())
+      own_meshes_.emplace(key, OwnMesh(scene_, adaptive_.base()));
   check_plan();
   order_attach();
 }
@@ -166,15 +168,29 @@ Simulation::LoopState Simulation::initialise()
     for (std::size_t i = 0; i < values.size(); ++i)
       values[i] = initial(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
   };
-  auto mesh = adaptive_.build(analytic);
-  auto V = create_p2_space(mesh, scene_.domain.dim);
+  fields_.set_mesh("", adaptive_.build(analytic));
   for (const auto& group : scene::cell_groups(scene_))
   {
-    // Each phase field from its own cells, (7.3).
+    // Each phase field from its own cells, (7.3), on the mesh its state lives on.
     scene::InitialPhaseField own(scene::group_scene(scene_, group));
-    auto phi = std::make_shared<Function>(V);
-    compat::interpolate(*phi, [&own](double x, double y, double z) { return own(x, y, z); });
-    fields_.set(group.prefix + ".phi", phi);
+    auto formula = [&own](double x, double y, double z) { return own(x, y, z); };
+    const std::string name = scene::state_field(scene_, group, "phi");
+    const std::string& key = fields_.info(name).mesh;
+    if (!key.empty())
+    {
+      // Its own mesh around its band, found at the nodes of the shared mesh (refined there).
+      auto probe = std::make_shared<Function>(fields_.space("", FieldSpace::scalar_p2));
+      compat::interpolate(*probe, formula);
+      PointEvaluator cell = [&own](std::span<const double> pts, std::span<double> values)
+      {
+        for (std::size_t i = 0; i < values.size(); ++i)
+          values[i] = own(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
+      };
+      fields_.set_mesh(key, own_meshes_.at(key).build(cell, box_above(*probe, own_band_level)));
+    }
+    auto phi = std::make_shared<Function>(fields_.space(key, FieldSpace::scalar_p2));
+    compat::interpolate(*phi, formula);
+    fields_.set(name, phi);
   }
   attach_all(); // the other fields start from their owners' defaults (fluid at rest)
   for (auto* sub : attach_order_)
@@ -198,6 +214,15 @@ std::string Simulation::save_checkpoint(const LoopState& at)
   {
     auto all = gather_to_root(comm_, adaptive_.history()[level]);
     data.arrays["mesh.refined_centroids." + std::to_string(level)] = std::move(all);
+  }
+  for (const auto& [key, own] : own_meshes_)
+  {
+    const std::string m = "mesh." + key + ".";
+    data.arrays[m + "box"].assign(own.patch_box().begin(), own.patch_box().end());
+    data.set(m + "levels", own.levels());
+    for (int level = 0; level < own.levels(); ++level)
+      data.arrays[m + "refined_centroids." + std::to_string(level)] =
+          gather_to_root(comm_, own.history()[level]);
   }
   std::string names;
   for (const auto& name : fields_.names())
@@ -242,16 +267,28 @@ Simulation::LoopState Simulation::restore()
     std::vector<std::vector<double>> history;
     for (int level = 0; level < int(data.scalar("mesh.levels")); ++level)
       history.push_back(data.array("mesh.refined_centroids." + std::to_string(level)));
-    MeshSpaces spaces;
     try
     {
-      spaces.mesh = adaptive_.replay(history);
+      fields_.set_mesh("", adaptive_.replay(history));
+      for (auto& [key, own] : own_meshes_)
+      {
+        const std::string m = "mesh." + key + ".";
+        if (!data.arrays.count(m + "box"))
+          throw CheckpointError("it holds no own mesh of " + key
+                                + " (it was written with numerics.mesh.cell_meshes: shared)");
+        compat::Box box;
+        const auto& stored_box = data.array(m + "box");
+        std::copy(stored_box.begin(), stored_box.end(), box.begin());
+        std::vector<std::vector<double>> own_history;
+        for (int level = 0; level < int(data.scalar(m + "levels")); ++level)
+          own_history.push_back(data.array(m + "refined_centroids." + std::to_string(level)));
+        fields_.set_mesh(key, own.replay(box, own_history));
+      }
     }
     catch (const std::runtime_error& e)
     {
       throw CheckpointError(e.what());
     }
-    spaces.dim = scene_.domain.dim;
     const auto stored = split_names(data.text("fields"));
     fields_.clear_functions();
     for (const auto& name : fields_.names())
@@ -264,7 +301,7 @@ Simulation::LoopState Simulation::restore()
                               + " (it was written by a scene without it)");
       if (info.space == FieldSpace::other)
         continue; // restored below, into the function its owner builds
-      auto f = std::make_shared<Function>(spaces.of(info.space));
+      auto f = std::make_shared<Function>(fields_.space(info.mesh, info.space));
       f->name = info.label;
       restore_field(data, "field." + name, *f);
       fields_.set(name, f);
@@ -324,7 +361,9 @@ FieldMap Simulation::output_fields() const
   auto add = [&](const std::string& label)
   {
     const std::string name = fields_.by_label(label);
-    if (auto f = name.empty() ? nullptr : fields_.find(name))
+    if (name.empty() || !fields_.info(name).mesh.empty())
+      return; // fields on a cell's own mesh are written as their copies on the shared mesh
+    if (auto f = fields_.find(name))
       out[label] = f;
   };
   for (const auto& label : scene_.output.fields)
@@ -338,30 +377,52 @@ FieldMap Simulation::output_fields() const
   return out;
 }
 
+std::map<std::string, std::shared_ptr<Mesh>> Simulation::rebuild_meshes()
+{
+  std::map<std::string, std::shared_ptr<Mesh>> meshes;
+  for (const auto& key : fields_.mesh_keys())
+  {
+    // Refine around the zero level set of every phase field on this mesh: max_i phi_i.
+    // Own meshes: phi = -1 beyond the old patch.
+    std::vector<PointEvaluator> phases;
+    std::shared_ptr<const Function> cell_phi;
+    for (const auto& name : fields_.names())
+      if (fields_.info(name).mesh == key && fields_.shapes_mesh(name))
+      {
+        auto f = fields_.get(name);
+        phases.push_back(key.empty() ? compat::make_evaluator(f)
+                                     : compat::make_evaluator(f, fields_.info(name).outside));
+        if (fields_.info(name).transfer == Transfer::keep_integral)
+          cell_phi = f;
+      }
+    PointEvaluator all = phases.front();
+    if (phases.size() > 1)
+      all = [&phases](std::span<const double> pts, std::span<double> values)
+      {
+        phases[0](pts, values);
+        std::vector<double> other(values.size());
+        for (std::size_t k = 1; k < phases.size(); ++k)
+        {
+          phases[k](pts, other);
+          for (std::size_t i = 0; i < values.size(); ++i)
+            values[i] = std::max(values[i], other[i]);
+        }
+      };
+    meshes[key] = key.empty() ? adaptive_.build(all)
+                              : own_meshes_.at(key).build(all, box_above(*cell_phi, own_band_level));
+  }
+  return meshes;
+}
+
 double Simulation::remesh(double& volume_change)
 {
   auto t0 = Clock::now();
-  // Refine around the zero level set of every phase field: max_i phi_i.
-  std::vector<PointEvaluator> phases;
+  std::map<std::string, std::shared_ptr<Function>> old;
   for (const auto& name : fields_.names())
-    if (fields_.info(name).transfer == Transfer::keep_integral)
-      phases.push_back(compat::make_evaluator(fields_.get(name)));
-  PointEvaluator all = phases.front();
-  if (phases.size() > 1)
-    all = [&phases](std::span<const double> pts, std::span<double> values)
-    {
-      phases[0](pts, values);
-      std::vector<double> other(values.size());
-      for (std::size_t k = 1; k < phases.size(); ++k)
-      {
-        phases[k](pts, other);
-        for (std::size_t i = 0; i < values.size(); ++i)
-          values[i] = std::max(values[i], other[i]);
-      }
-    };
-  MeshSpaces spaces;
-  spaces.mesh = adaptive_.build(all);
-  spaces.dim = scene_.domain.dim;
+    if (auto f = fields_.find(name))
+      old[name] = f;
+  for (auto& [key, mesh] : rebuild_meshes())
+    fields_.set_mesh(key, mesh);
 
   std::map<std::string, std::shared_ptr<Function>> moved;
   volume_change = 0;
@@ -370,18 +431,25 @@ double Simulation::remesh(double& volume_change)
     const FieldInfo& info = fields_.info(name);
     if (info.transfer == Transfer::recompute)
       continue;
-    auto old = fields_.get(name);
-    auto f = std::make_shared<Function>(spaces.of(info.space));
+    auto f = std::make_shared<Function>(fields_.space(info.mesh, info.space));
     f->name = info.label;
-    compat::transfer(old, *f);
+    if (info.mesh.empty())
+      compat::transfer(old.at(name), *f);
+    else
+      compat::Resampler(old.at(name), f, {}, info.outside).apply(); // its value beyond the old patch
     if (info.transfer == Transfer::keep_integral)
     {
       TransferReport report;
-      restore_integral(old, f, report); // (3.10): the cell volume is kept
+      // (3.10): the cell volume is kept
+      const double shift = info.mesh.empty() ? 0.0
+                                             : mesh_volume(old.at(name)->function_space())
+                                                   - mesh_volume(f->function_space());
+      restore_integral(old.at(name), f, report, shift);
       volume_change = std::max(volume_change, report.volume_change_corrected);
     }
     moved[name] = f;
   }
+  old.clear();
   fields_.clear_functions();
   for (auto& [name, f] : moved)
     fields_.set(name, f);

@@ -9,6 +9,7 @@
 #include "io/FieldWriter.h"
 #include "io/ObservablesCsv.h"
 #include "mesh/AdaptiveMesh.h"
+#include "mesh/OwnMesh.h"
 #include "scene/Scene.h"
 #include <map>
 #include <memory>
@@ -75,6 +76,8 @@ private:
   /// The fields the scene's output lists, by label.
   FieldMap output_fields() const;
   double remesh(double& volume_change);
+  /// The new meshes at a remesh: each refined around the zero level sets of its fields.
+  std::map<std::string, std::shared_ptr<Mesh>> rebuild_meshes();
   StepTimings step(double dt);
   void record(const LoopState& at, const StepTimings& timings, double remesh_time,
               double volume_change);
@@ -91,8 +94,9 @@ private:
   const scene::Scene& scene_;
   MPI_Comm comm_;
   bool restart_;
-  AdaptiveMesh adaptive_;
+  AdaptiveMesh adaptive_; ///< the shared mesh (key "")
   FieldRegistry fields_;
+  std::map<std::string, OwnMesh> own_meshes_; ///< cells' own meshes, by key
   std::vector<std::unique_ptr<SubProblem>> split_; ///< in the order they step
   std::vector<std::string> initial_; ///< fields with initial data (the phase fields)
   std::vector<SubProblem*> attach_order_;

@@ -1,4 +1,5 @@
 #include "compat/Dolfinx.h"
+#include "compat/PointLocator.h"
 #include "scene/MeshDomain.h"
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/geometry/utils.h>
@@ -207,63 +208,9 @@ std::array<std::array<double, 3>, 2> bounding_box(const Mesh& m)
   return {lo, hi};
 }
 
-namespace
-{
-std::vector<std::int32_t> all_local_cells(const Mesh& m)
-{
-  auto map = m.topology().index_map(m.topology().dim());
-  std::vector<std::int32_t> cells(map->size_local() + map->num_ghosts());
-  std::iota(cells.begin(), cells.end(), 0);
-  return cells;
-}
 
-/// Locates points (N x 3) in local cells of a mesh; bounding-box trees are built once.
-class PointLocator
-{
-public:
-  explicit PointLocator(std::shared_ptr<const Mesh> m)
-      : mesh_(m), cells_(all_local_cells(*m)),
-        tree_(*m, m->topology().dim(), cells_, 1e-10)
-  {
-  }
-
-  std::vector<std::int32_t> locate(std::span<const double> pts) const
-  {
-    const std::size_t n = pts.size() / 3;
-    auto candidates = geometry::compute_collisions(tree_, pts);
-    auto colliding = geometry::compute_colliding_cells(*mesh_, candidates, pts);
-    std::vector<std::int32_t> cells(n, -1);
-    std::vector<std::size_t> missed;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      if (colliding.num_links(i) > 0)
-        cells[i] = colliding.links(i)[0];
-      else
-        missed.push_back(i);
-    }
-    if (!missed.empty())
-    {
-      // Round-off misses on cell boundaries: take the closest local cell.
-      if (!midpoint_tree_)
-        midpoint_tree_ = std::make_unique<geometry::BoundingBoxTree>(
-            geometry::create_midpoint_tree(*mesh_, mesh_->topology().dim(), cells_));
-      std::vector<double> mp;
-      for (auto i : missed)
-        mp.insert(mp.end(), pts.begin() + 3 * i, pts.begin() + 3 * i + 3);
-      auto closest = geometry::compute_closest_entity(tree_, *midpoint_tree_, *mesh_, mp);
-      for (std::size_t j = 0; j < missed.size(); ++j)
-        cells[missed[j]] = closest[j];
-    }
-    return cells;
-  }
-
-private:
-  std::shared_ptr<const Mesh> mesh_;
-  std::vector<std::int32_t> cells_;
-  geometry::BoundingBoxTree tree_;
-  mutable std::unique_ptr<geometry::BoundingBoxTree> midpoint_tree_;
-};
-} // namespace
+using detail::all_local_cells;
+using detail::PointLocator;
 
 PointEvaluator make_evaluator(std::shared_ptr<const Function> u)
 {

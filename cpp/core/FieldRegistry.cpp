@@ -1,4 +1,6 @@
 #include "core/FieldRegistry.h"
+#include "mesh/FieldTransfer.h"
+#include <algorithm>
 #include <stdexcept>
 
 namespace cellphase
@@ -59,5 +61,43 @@ double FieldRegistry::scalar(const std::string& name) const
   if (it == scalars_.end())
     throw std::out_of_range("scalar " + name + " is not published by any sub-problem");
   return it->second;
+}
+
+void FieldRegistry::set_mesh(const std::string& key, std::shared_ptr<Mesh> mesh)
+{
+  meshes_[key] = {mesh, nullptr, nullptr};
+}
+
+std::shared_ptr<Mesh> FieldRegistry::mesh(const std::string& key) const
+{
+  auto it = meshes_.find(key);
+  if (it == meshes_.end())
+    throw std::out_of_range("no mesh " + (key.empty() ? std::string("(shared)") : key)
+                            + " is set");
+  return it->second.mesh;
+}
+
+std::shared_ptr<Space> FieldRegistry::space(const std::string& key, FieldSpace kind)
+{
+  mesh(key); // names a missing mesh
+  MeshEntry& e = meshes_[key];
+  const int dim = e.mesh->topology().dim();
+  if (kind == FieldSpace::scalar_p2)
+    return e.scalar ? e.scalar : e.scalar = create_p2_space(e.mesh, dim);
+  if (kind == FieldSpace::vector_p2)
+    return e.vector ? e.vector : e.vector = create_vector_p2_space(e.mesh, dim);
+  throw std::logic_error("fields of space 'other' are built by their owners");
+}
+
+std::vector<std::string> FieldRegistry::mesh_keys() const
+{
+  std::vector<std::string> keys{""};
+  for (const auto& name : order_)
+  {
+    const std::string& key = info_.at(name).mesh;
+    if (std::find(keys.begin(), keys.end(), key) == keys.end())
+      keys.push_back(key);
+  }
+  return keys;
 }
 } // namespace cellphase

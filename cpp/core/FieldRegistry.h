@@ -36,6 +36,13 @@ struct FieldInfo
   FieldSpace space = FieldSpace::scalar_p2;
   Transfer transfer = Transfer::interpolate;
   bool checkpointed = true; ///< stored in checkpoints (the loop's history)
+  /// The mesh it lives on: "" is the shared mesh (refined around all cells, the flow's);
+  /// another key is a mesh of one cell's own (numerics.mesh.cell_meshes: own).
+  std::string mesh = "";
+  /// Its value outside its mesh (phi = -1 outside a cell's own patch).
+  double outside = 0;
+  /// Its mesh is refined around its zero level set (as around every keep_integral field).
+  bool level_set = false;
 };
 
 class FieldRegistry
@@ -59,6 +66,23 @@ public:
   /// Drop all functions (before a new mesh); declarations stay.
   void clear_functions() { functions_.clear(); }
 
+  /// The meshes the fields live on, by the key of FieldInfo::mesh ("" the shared mesh);
+  /// set by the time loop before every attach.
+  void set_mesh(const std::string& key, std::shared_ptr<Mesh> mesh);
+  /// Throws std::out_of_range naming the key if there is no such mesh.
+  std::shared_ptr<Mesh> mesh(const std::string& key) const;
+  /// The space of a kind (scalar_p2, vector_p2) on mesh `key`: built once per mesh and
+  /// shared by the fields of that kind there.
+  std::shared_ptr<Space> space(const std::string& key, FieldSpace kind);
+  /// Keys of the meshes the declared fields live on ("" first, then in declaration order).
+  std::vector<std::string> mesh_keys() const;
+  /// The fields whose mesh is refined around their zero level set (see FieldInfo).
+  bool shapes_mesh(const std::string& name) const
+  {
+    const FieldInfo& i = info(name);
+    return i.level_set || i.transfer == Transfer::keep_integral;
+  }
+
   /// Named scalars that sub-problems publish for others (e.g. a cell's area target for the
   /// flow's global area constraint); not checkpointed (their owners checkpoint them).
   void set_scalar(const std::string& name, double value) { scalars_[name] = value; }
@@ -69,5 +93,11 @@ private:
   std::vector<std::string> order_;
   std::map<std::string, std::shared_ptr<Function>> functions_;
   std::map<std::string, double> scalars_;
+  struct MeshEntry
+  {
+    std::shared_ptr<Mesh> mesh;
+    std::shared_ptr<Space> scalar, vector;
+  };
+  std::map<std::string, MeshEntry> meshes_;
 };
 } // namespace cellphase

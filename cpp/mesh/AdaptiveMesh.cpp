@@ -7,7 +7,12 @@
 namespace cellphase
 {
 AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, MPI_Comm comm)
-    : base_(compat::create_base_mesh(comm, scene.domain)),
+    : AdaptiveMesh(scene, compat::create_base_mesh(comm, scene.domain))
+{
+}
+
+AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base)
+    : base_(base),
       levels_(scene::required_levels(scene)), h_base_(scene::base_cell_size(scene.domain)),
       threshold_(scene.numerics.mesh.refine_threshold),
       band_(2 * std::sqrt(2.0) * std::atanh(threshold_) * scene.numerics.epsilon)

@@ -10,6 +10,8 @@ class AdaptiveMesh
 {
 public:
   AdaptiveMesh(const scene::Scene& scene, MPI_Comm comm);
+  /// The same refinement of another base mesh (a cell's patch of the scene's base mesh).
+  AdaptiveMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base);
 
   /// The base mesh refined `levels()` times wherever |phi| < threshold somewhere in a cell.
   /// Records which cells it refined (see history()).

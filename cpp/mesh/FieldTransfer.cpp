@@ -38,9 +38,9 @@ FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, Transfer
 }
 
 void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<Function> phi,
-                      TransferReport& report)
+                      TransferReport& report, double shift)
 {
-  const double int_old = integral_of(phi_old), int_new = integral_of(phi);
+  const double int_old = integral_of(phi_old) + shift, int_new = integral_of(phi);
 
   // The correction shape (1 - phi^2) at the P2 nodes is its own P2 interpolant.
   auto shape = std::make_shared<Function>(phi->function_space());
@@ -59,7 +59,7 @@ void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<F
     for (std::size_t i = 0; i < p.size(); ++i)
       p[i] += c * s[i];
   }
-  // Relative to the cell volume int (phi+1)/2 = (int phi + |Omega|)/2.
+  // Relative to the cell volume int (phi+1)/2 = (int phi + |Omega|)/2 on the new mesh.
   const double omega = [&] {
     auto one = std::make_shared<Function>(phi->function_space());
     one->x()->set(1.0);

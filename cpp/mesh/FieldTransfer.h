@@ -22,9 +22,11 @@ std::shared_ptr<Space> create_vector_p2_space(std::shared_ptr<const Mesh> mesh, 
 FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, TransferReport& report);
 
 /// After phi was interpolated from phi_old: add c (1 - phi^2) so that int phi equals
-/// int phi_old (the correction acts only in the interface); fills the report.
+/// int phi_old + shift (the correction acts only in the interface); fills the report.
+/// The shift is |old mesh| - |new mesh| when the meshes cover different regions (a cell's
+/// own patch), so that int (1 + phi), the cell's volume, is kept.
 void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<Function> phi,
-                      TransferReport& report);
+                      TransferReport& report, double shift = 0);
 
 /// int phi dx of a P2 field.
 double integral_of(std::shared_ptr<const Function> f);

@@ -3,16 +3,18 @@
 #include "util/Clock.h"
 #include <algorithm>
 #include <limits>
+#include <numeric>
 
 namespace cellphase
 {
 InteractionSubProblem::InteractionSubProblem(scene::PlanStep step, const scene::Scene& scene,
                                              MPI_Comm comm)
     : SubProblem(std::move(step)), comm_(comm), eps_(scene.numerics.epsilon),
-      interaction_(scene.interaction), groups_(scene::cell_groups(scene))
+      interaction_(scene.interaction), groups_(scene::cell_groups(scene)),
+      own_(scene::own_meshes(scene))
 {
   for (const auto& g : groups_)
-    phis_.push_back(g.prefix + ".phi");
+    phis_.push_back(scene::state_field(scene, g, "phi"));
 }
 
 void InteractionSubProblem::declare(FieldRegistry& fields)
@@ -31,12 +33,21 @@ void InteractionSubProblem::attach(FieldRegistry& fields)
   w_sum_.clear();
   B_sum_.clear();
   energy_.clear();
+  evaluate_.clear();
+  nodes_.clear();
+  if (own_)
+    for (const auto& name : phis_)
+    {
+      auto phi = fields.get(name);
+      evaluate_.push_back(compat::make_evaluator(phi, -1.0));
+      nodes_.push_back(phi->function_space()->tabulate_dof_coordinates(false));
+    }
   if (!interaction_)
     return;
-  auto V = fields.get(phis_.front())->function_space();
-  const int dim = V->mesh()->topology().dim();
   for (std::size_t i = 0; i < groups_.size(); ++i)
   {
+    auto V = fields.get(phis_[i])->function_space(); // its own mesh, or the shared one
+    const int dim = V->mesh()->topology().dim();
     const std::string base = "interaction." + groups_[i].name + ".";
     w_sum_.push_back(std::make_shared<Function>(V));
     B_sum_.push_back(std::make_shared<Function>(V));
@@ -48,6 +59,45 @@ void InteractionSubProblem::attach(FieldRegistry& fields)
         {{"eps", std::make_shared<const Constant>(eps_)}}, V->mesh()));
   }
   update_sums(); // for the observables of this state
+}
+
+bool InteractionSubProblem::boxes_meet(const std::array<double, 6>& a,
+                                       const std::array<double, 6>& b)
+{
+  for (int d = 0; d < 3; ++d)
+    if (a[3 + d] < b[d] || b[3 + d] < a[d])
+      return false;
+  return true;
+}
+
+InteractionSubProblem::Samples InteractionSubProblem::sample(std::size_t i, std::size_t j,
+                                                             const std::array<double, 6>& box_j) const
+{
+  Samples s;
+  if (!own_)
+  {
+    auto phi = fields_->get(phis_[j])->x()->array();
+    s.nodes.resize(phi.size());
+    std::iota(s.nodes.begin(), s.nodes.end(), 0);
+    s.values.assign(phi.begin(), phi.end());
+    return s;
+  }
+  const auto& x = nodes_[i];
+  std::vector<double> pts;
+  for (std::size_t k = 0; k < x.size() / 3; ++k)
+  {
+    bool inside = true;
+    for (int d = 0; d < 3 && inside; ++d)
+      inside = x[3 * k + d] >= box_j[d] && x[3 * k + d] <= box_j[3 + d];
+    if (inside)
+    {
+      s.nodes.push_back(std::int32_t(k));
+      pts.insert(pts.end(), x.begin() + 3 * k, x.begin() + 3 * k + 3);
+    }
+  }
+  s.values.resize(s.nodes.size());
+  evaluate_[j](pts, s.values);
+  return s;
 }
 
 std::array<double, 6> InteractionSubProblem::band_box(const Function& phi) const
@@ -75,20 +125,8 @@ void InteractionSubProblem::update_sums()
 {
   const std::size_t n = groups_.size();
   std::vector<std::array<double, 6>> boxes;
-  std::vector<std::span<const double>> phi;
   for (const auto& name : phis_)
-  {
-    auto f = fields_->get(name);
-    boxes.push_back(band_box(*f));
-    phi.push_back(f->x()->array());
-  }
-  auto overlap = [&](std::size_t i, std::size_t j)
-  {
-    for (int a = 0; a < 3; ++a)
-      if (boxes[i][3 + a] < boxes[j][a] || boxes[j][3 + a] < boxes[i][a])
-        return false;
-    return true;
-  };
+    boxes.push_back(band_box(*fields_->get(name)));
   scene::Interaction in = *interaction_;
   const InteractionShape shape{in.r1, in.r2, in.a1, in.a2, in.a3};
   for (std::size_t i = 0; i < n; ++i)
@@ -98,12 +136,15 @@ void InteractionSubProblem::update_sums()
     std::fill(w.begin(), w.end(), 0.0);
     std::fill(B.begin(), B.end(), 0.0);
     for (std::size_t j = 0; j < n; ++j)
-      if (j != i && overlap(i, j))
-        for (std::size_t k = 0; k < w.size(); ++k)
+      if (j != i && boxes_meet(boxes[i], boxes[j]))
+      {
+        const Samples s = sample(i, j, boxes[j]);
+        for (std::size_t m = 0; m < s.nodes.size(); ++m)
         {
-          w[k] += interaction_w(phi[j][k], eps_, shape);
-          B[k] += interaction_B(phi[j][k], eps_);
+          w[s.nodes[m]] += interaction_w(s.values[m], eps_, shape);
+          B[s.nodes[m]] += interaction_B(s.values[m], eps_);
         }
+      }
   }
 }
 
@@ -128,14 +169,23 @@ void InteractionSubProblem::observe(Observation& row)
       energy += compat::assemble_scalar(*form) / interaction_->In; // (7.5)
   }
   // Largest overlap of two cells at the nodes: max_x min(phi~_i, phi~_j), phi~ = (1+phi)/2.
+  // With own meshes only pairs whose band boxes meet (elsewhere one phi~ is below 1e-12).
   double worst = 0;
-  std::vector<std::span<const double>> phi;
+  std::vector<std::array<double, 6>> boxes;
   for (const auto& name : phis_)
-    phi.push_back(fields_->get(name)->x()->array());
-  for (std::size_t i = 0; i < phi.size(); ++i)
-    for (std::size_t j = i + 1; j < phi.size(); ++j)
-      for (std::size_t k = 0; k < phi[i].size(); ++k)
-        worst = std::max(worst, std::min(1 + phi[i][k], 1 + phi[j][k]) / 2);
+    boxes.push_back(own_ ? band_box(*fields_->get(name)) : std::array<double, 6>{});
+  for (std::size_t i = 0; i < phis_.size(); ++i)
+  {
+    auto phi_i = fields_->get(phis_[i])->x()->array();
+    for (std::size_t j = i + 1; j < phis_.size(); ++j)
+    {
+      if (own_ && !boxes_meet(boxes[i], boxes[j]))
+        continue;
+      const Samples s = sample(i, j, boxes[j]);
+      for (std::size_t m = 0; m < s.nodes.size(); ++m)
+        worst = std::max(worst, std::min(1 + phi_i[s.nodes[m]], 1 + s.values[m]) / 2);
+    }
+  }
   MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MAX, comm_);
   row.values.total_energy += energy; // (7.4)
   row.values.total_with_kinetic += energy;

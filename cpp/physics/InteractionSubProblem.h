@@ -6,6 +6,7 @@
 // several phase fields, the interaction energy (7.5) and the largest overlap
 // max_x min((1 + phi_i)/2, (1 + phi_j)/2) of two cells.
 #pragma once
+#include "compat/Resample.h"
 #include "core/SubProblem.h"
 #include "physics/InteractionFunction.h"
 #include "scene/Plan.h"
@@ -30,6 +31,16 @@ private:
   /// Bounding box (min x, y, z, max x, y, z) of a phase field's band over all ranks; empty
   /// (min > max) if it has none.
   std::array<double, 6> band_box(const Function& phi) const;
+  /// phi_j at the nodes of phi_i's mesh: all nodes when they share the mesh; with own
+  /// meshes the nodes inside phi_j's band box, where phi_j is evaluated on its own mesh
+  /// (elsewhere |phi_j| >= 1 - 1e-12, where w_j vanishes and B(phi_j) is below 1e-24/eps).
+  struct Samples
+  {
+    std::vector<std::int32_t> nodes;
+    std::vector<double> values;
+  };
+  Samples sample(std::size_t i, std::size_t j, const std::array<double, 6>& box_j) const;
+  static bool boxes_meet(const std::array<double, 6>& a, const std::array<double, 6>& b);
   void update_sums();
 
   MPI_Comm comm_;
@@ -40,5 +51,8 @@ private:
   FieldRegistry* fields_ = nullptr;
   std::vector<std::shared_ptr<Function>> w_sum_, B_sum_;
   std::vector<std::shared_ptr<Form>> energy_;
+  bool own_; ///< each phase field on its own mesh (numerics.mesh.cell_meshes: own)
+  std::vector<PointEvaluator> evaluate_;    ///< own meshes: phi_j, -1 beyond its mesh
+  std::vector<std::vector<double>> nodes_;  ///< own meshes: node coordinates of phi_i's space
 };
 } // namespace cellphase

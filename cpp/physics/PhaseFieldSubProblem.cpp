@@ -1,4 +1,7 @@
 #include "physics/PhaseFieldSubProblem.h"
+#include "mesh/FieldTransfer.h"
+#include "mesh/OwnMesh.h"
+#include "util/Clock.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,16 +22,46 @@ std::string format(const char* fmt, Args... args)
 PhaseFieldSubProblem::PhaseFieldSubProblem(scene::PlanStep step, const scene::Scene& scene,
                                            MPI_Comm comm, scene::CellGroup group, int groups)
     : SubProblem(std::move(step)), group_(std::move(group)), groups_(groups),
-      scene_(scene::group_scene(scene, group_)), module_(scene_, comm)
+      scene_(scene::group_scene(scene, group_)), module_(scene_, comm),
+      own_(scene::own_meshes(scene_))
 {
 }
+
+namespace
+{
+double volume_of(std::shared_ptr<const Space> V)
+{
+  auto one = std::make_shared<Function>(std::const_pointer_cast<Space>(V));
+  one->x()->set(1.0);
+  return integral_of(one);
+}
+
+compat::Box box_of(const Mesh& mesh)
+{
+  const auto b = compat::bounding_box(mesh);
+  return {b[0][0], b[0][1], b[0][2], b[1][0], b[1][1], b[1][2]};
+}
+} // namespace
 
 void PhaseFieldSubProblem::declare(FieldRegistry& fields)
 {
   fields_ = &fields;
   for (const auto& f : scene::model_fields(scene_.phase_field.model))
+  {
+    const double outside = f == "phi" ? -1 : 0; // no cell, no potential
+    if (!own_)
+    {
+      fields.declare({field(f), f + group_.label_suffix, name(), FieldSpace::scalar_p2,
+                      f == "phi" ? Transfer::keep_integral : Transfer::interpolate, true});
+      continue;
+    }
+    // The state on this cell's mesh (key: the group's prefix), its copy on the shared mesh.
+    fields.declare({state(f), "own_" + f + group_.label_suffix, name(), FieldSpace::scalar_p2,
+                    f == "phi" ? Transfer::keep_integral : Transfer::interpolate, true,
+                    group_.prefix, outside});
     fields.declare({field(f), f + group_.label_suffix, name(), FieldSpace::scalar_p2,
-                    f == "phi" ? Transfer::keep_integral : Transfer::interpolate, true});
+                    Transfer::recompute, false, "", outside, f == "phi"});
+  }
   // dE/dphi for the flow's interface force: mu or w itself, or the projection of (3.84),
   // which is recomputed from phi and mu on every mesh.
   const std::string potential = field("potential");
@@ -39,26 +72,82 @@ void PhaseFieldSubProblem::declare(FieldRegistry& fields)
 
 void PhaseFieldSubProblem::attach(FieldRegistry& fields)
 {
-  auto phi = fields.get(field("phi"));
+  auto phi = fields.get(state("phi"));
   FieldMap given;
   for (const auto& f : scene::model_fields(scene_.phase_field.model))
-    if (auto u = fields.find(field(f)))
+    if (auto u = fields.find(state(f)))
       given[f] = u;
   module_.attach(std::const_pointer_cast<Space>(phi->function_space()), given);
   for (const auto& [f, u] : module_.fields())
-    fields.set(field(f), u);
+    fields.set(state(f), u);
   // The multipliers of a checkpoint are in place (restore() comes before attach): the
   // projection of (3.84) uses them.
+  std::shared_ptr<const Function> potential;
   if (fields.declared(field("potential")))
-    fields.set(field("potential"),
-               std::const_pointer_cast<Function>(module_.interface_potential()));
+    potential = module_.interface_potential();
+  if (own_)
+  {
+    // Copies on the shared mesh: its cells inside this patch are resampled after every
+    // step, the others hold the value outside the cell (phi = -1, potentials 0).
+    auto patch = module_.space()->mesh();
+    const auto cells = compat::cells_inside(*fields.mesh(""), patch);
+    to_shared_.clear();
+    auto copy = [&](std::shared_ptr<const Function> from, double outside)
+    {
+      auto to = std::make_shared<Function>(fields.space("", FieldSpace::scalar_p2));
+      to->x()->set(outside);
+      to_shared_.push_back(std::make_unique<compat::Resampler>(from, to, cells, outside));
+      return to;
+    };
+    std::shared_ptr<Function> potential_copy;
+    for (const auto& [f, u] : module_.fields())
+    {
+      auto c = copy(u, fields.info(field(f)).outside);
+      c->name = fields.info(field(f)).label;
+      fields.set(field(f), c);
+      if (u == potential)
+        potential_copy = c;
+    }
+    if (potential && !potential_copy)
+      potential_copy = copy(potential, 0);
+    if (potential)
+      fields.set(field("potential"), potential_copy);
+    update_copies();
+    patch_volume_ = volume_of(module_.space());
+    shared_volume_ = volume_of(fields.space("", FieldSpace::scalar_p2));
+    patch_box_ = box_of(*patch);
+    domain_box_ = box_of(*fields.mesh(""));
+    if (cell_volume_target_ >= 0) // int phi over this patch for the same int (1 + phi)
+      module_.set_targets({cell_volume_target_ - patch_volume_, module_.targets().area});
+  }
+  else if (potential)
+    fields.set(field("potential"), std::const_pointer_cast<Function>(potential));
   observables_ = std::make_unique<Observables>(scene_, module_);
+}
+
+void PhaseFieldSubProblem::update_copies()
+{
+  for (auto& r : to_shared_)
+    r->apply();
 }
 
 void PhaseFieldSubProblem::connect(FieldRegistry& fields)
 {
   if (std::count(reads().begin(), reads().end(), "flow.v"))
-    module_.set_velocity(fields.get("flow.v"));
+  {
+    if (!own_)
+      module_.set_velocity(fields.get("flow.v"));
+    else
+    {
+      // v^{n+1} resampled onto this cell's mesh before each of its steps.
+      const int dim = module_.space()->mesh()->topology().dim();
+      velocity_ = std::make_shared<Function>(create_vector_p2_space(module_.space()->mesh(), dim));
+      velocity_in_ = std::make_unique<compat::Resampler>(fields.get("flow.v"), velocity_,
+                                                         std::vector<std::int32_t>{}, 0.0);
+      velocity_in_->apply();
+      module_.set_velocity(velocity_);
+    }
+  }
   const std::string sums = "interaction." + group_.name;
   if (fields.declared(sums + ".w_sum"))
   {
@@ -80,11 +169,26 @@ void PhaseFieldSubProblem::start()
   // Targets of the constraints, (3.10)-(3.11): the volume and E_CH at t = 0.
   const ObservableValues v = observables_->evaluate();
   module_.set_targets({v.phi_integral, v.energy_ch});
+  if (own_)
+    cell_volume_target_ = v.phi_integral + patch_volume_;
   initial_volume_ = v.volume;
   publish_targets();
 }
 
-StepTimings PhaseFieldSubProblem::step(double dt) { return module_.step(dt); }
+StepTimings PhaseFieldSubProblem::step(double dt)
+{
+  if (!own_)
+    return module_.step(dt);
+  auto t0 = Clock::now();
+  if (velocity_in_)
+    velocity_in_->apply();
+  const double in = seconds_since(t0);
+  StepTimings t = module_.step(dt);
+  t0 = Clock::now();
+  update_copies();
+  t.assemble += in + seconds_since(t0); // the transfers between the meshes
+  return t;
+}
 
 void PhaseFieldSubProblem::unwrap_centre(std::array<double, 3>& centre)
 {
@@ -109,6 +213,8 @@ void PhaseFieldSubProblem::unwrap_centre(std::array<double, 3>& centre)
 void PhaseFieldSubProblem::observe(Observation& row)
 {
   ObservableValues v = observables_->evaluate();
+  if (own_) // int phi over the domain: phi = -1 outside the patch
+    v.phi_integral -= shared_volume_ - patch_volume_;
   unwrap_centre(v.center);
   last_ = v;
   if (row.phase_fields++ == 0)
@@ -144,8 +250,36 @@ void PhaseFieldSubProblem::observe(Observation& row)
   }
 }
 
+std::string PhaseFieldSubProblem::patch_problem() const
+{
+  // The cell's band may approach its patch's edge (inside the domain) to a quarter of the
+  // margin: beyond, phi is no longer -1 where the patch ends.
+  const double margin = scene_.numerics.mesh.own_margin.value_or(8 * scene_.numerics.epsilon);
+  const auto band = box_above(*module_.fields().at("phi"), -0.999);
+  const double tol = 1e-9 * (domain_box_[3] - domain_box_[0]);
+  for (int a = 0; a < scene_.domain.dim; ++a)
+  {
+    const bool low_inside = patch_box_[a] > domain_box_[a] + tol;
+    const bool high_inside = patch_box_[3 + a] < domain_box_[3 + a] - tol;
+    const double gap = std::min(low_inside ? band[a] - patch_box_[a] : 1e300,
+                                high_inside ? patch_box_[3 + a] - band[3 + a] : 1e300);
+    if (gap < margin / 4)
+      return format("the cell%s came within %.3g of the edge of its own mesh (band phi > "
+                    "-0.999, numerics.mesh.own_margin = %g): remesh more often "
+                    "(numerics.mesh.remesh_every) or widen the margin",
+                    group_.label_suffix.c_str(), gap, margin);
+  }
+  return "";
+}
+
 std::string PhaseFieldSubProblem::health(const Observation&) const
 {
+  if (own_)
+  {
+    const std::string problem = patch_problem();
+    if (!problem.empty())
+      return problem;
+  }
   const auto& v = last_; // this phase field's own values
   const auto& limits = scene_.numerics.limits;
   const double phi_abs = std::max(-v.phi_min, v.phi_max);
@@ -171,6 +305,8 @@ void PhaseFieldSubProblem::save(CheckpointData& data) const
   data.set(key("targets.volume"), module_.targets().volume);
   data.set(key("targets.area"), module_.targets().area);
   data.set(key("initial_volume"), initial_volume_);
+  if (own_)
+    data.set(key("targets.cell_volume"), cell_volume_target_);
   // dE/dphi of the L2 Helfrich flows (the next flow step's force) uses them
   data.set(key("multipliers.volume"), module_.multipliers()[0]);
   data.set(key("multipliers.area"), module_.multipliers()[1]);
@@ -186,6 +322,8 @@ void PhaseFieldSubProblem::restore(const CheckpointData& data)
 {
   module_.set_targets({data.scalar(key("targets.volume")), data.scalar(key("targets.area"))});
   initial_volume_ = data.scalar(key("initial_volume"));
+  if (own_)
+    cell_volume_target_ = data.scalar(key("targets.cell_volume"));
   module_.set_multipliers({data.scalar(key("multipliers.volume")),
                            data.scalar(key("multipliers.area"))});
   for (int a = 0; a < 3; ++a)

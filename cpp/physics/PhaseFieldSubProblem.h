@@ -3,6 +3,7 @@
 // its observables (section 5.3), the constraint targets fixed at t = 0 and the centre of
 // mass continued across periodic faces, both checkpointed.
 #pragma once
+#include "compat/Resample.h"
 #include "core/SubProblem.h"
 #include "physics/Observables.h"
 #include "physics/PhaseFieldModule.h"
@@ -33,7 +34,14 @@ public:
   int threads() const { return module_.threads(); }
 
 private:
+  /// The field others read (on the shared mesh) and the one holding its state (the same
+  /// field, or with own meshes the one on this cell's mesh).
   std::string field(const std::string& f) const { return group_.prefix + "." + f; }
+  std::string state(const std::string& f) const { return scene::state_field(scene_, group_, f); }
+  /// Own meshes: the copies on the shared mesh from the state (after every step).
+  void update_copies();
+  /// Own meshes: "" or how close the cell came to the edge of its mesh.
+  std::string patch_problem() const;
   std::string key(const std::string& k) const { return name() + "." + k; }
   void publish_targets();
   void unwrap_centre(std::array<double, 3>& centre);
@@ -49,5 +57,15 @@ private:
   /// Along periodic axes: the whole periods added so far, and the centre of the last row.
   std::array<double, 3> centre_shift_{0, 0, 0}, last_centre_{0, 0, 0};
   bool have_last_centre_ = false;
+
+  // numerics.mesh.cell_meshes: own (section 7.2)
+  bool own_;
+  std::vector<std::unique_ptr<compat::Resampler>> to_shared_; ///< state -> copies
+  std::unique_ptr<compat::Resampler> velocity_in_;            ///< flow.v -> own mesh
+  std::shared_ptr<Function> velocity_;                         ///< flow.v on the own mesh
+  double patch_volume_ = 0, shared_volume_ = 0;               ///< |own mesh|, |shared mesh|
+  compat::Box patch_box_{}, domain_box_{};
+  /// int (1 + phi), the volume target that does not depend on the patch; < 0 until start().
+  double cell_volume_target_ = -1;
 };
 } // namespace cellphase

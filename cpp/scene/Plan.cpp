@@ -36,6 +36,9 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     PlanStep pf{g.step, std::string("phase-field module (") + to_string(m) + ")"
                             + (groups.size() > 1 ? " of " + g.name : ""),
                 {}, qualified(g.prefix, model_fields(m))};
+    if (own_meshes(s))
+      for (const auto& f : qualified(g.prefix + ".own", model_fields(m)))
+        pf.writes.push_back(f);
     if (s.flow)
     {
       pf.writes.push_back(g.prefix + ".potential"); // dE/dphi, the interface force's potential
@@ -46,7 +49,7 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     {
       const std::string sums = "interaction." + g.name;
       pf.reads.insert(pf.reads.end(), {sums + ".w_sum", sums + ".B_sum"});
-      interaction.reads.push_back(g.prefix + ".phi");
+      interaction.reads.push_back(state_field(s, g, "phi"));
       interaction.writes.insert(interaction.writes.end(), {sums + ".w_sum", sums + ".B_sum"});
     }
     steps[pf.name] = pf;
@@ -57,7 +60,7 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     {
       interaction.description = "overlap of the cells (no interaction potential)";
       for (const auto& g : groups)
-        interaction.reads.push_back(g.prefix + ".phi");
+        interaction.reads.push_back(state_field(s, g, "phi"));
     }
     steps[interaction.name] = interaction;
   }
@@ -122,8 +125,15 @@ Plan make_plan(const Scene& s)
   for (const auto& name : s.numerics.split ? *s.numerics.split : default_split(s))
     plan.steps.push_back(steps.at(name));
   for (const auto& g : cell_groups(s))
-    plan.initial.push_back(g.prefix + ".phi");
+    plan.initial.push_back(state_field(s, g, "phi"));
   return plan;
+}
+
+bool own_meshes(const Scene& s) { return s.numerics.mesh.cell_meshes == Mesh::CellMeshes::own; }
+
+std::string state_field(const Scene& s, const CellGroup& g, const std::string& field)
+{
+  return g.prefix + (own_meshes(s) ? ".own." : ".") + field;
 }
 
 std::vector<CellGroup> cell_groups(const Scene& s)

@@ -37,6 +37,13 @@ std::vector<CellGroup> cell_groups(const Scene& s);
 /// The scene as one group's phase field sees it: only its cells, its own parameters.
 Scene group_scene(const Scene& s, const CellGroup& g);
 
+/// numerics.mesh.cell_meshes: own. Each phase field then lives on its own mesh (key: the
+/// group's prefix) as <prefix>.own.<field>, and <prefix>.<field> are its copies on the
+/// shared mesh, which the flow, the membrane union and the output read.
+bool own_meshes(const Scene& s);
+/// The field of the group's own state: <prefix>.<field>, or <prefix>.own.<field>.
+std::string state_field(const Scene& s, const CellGroup& g, const std::string& field);
+
 /// Sub-problems the scene needs, in the thesis' order (section 5.3: the membrane union,
 /// then the flow with phi^n, the phase field with v^{n+1}, the membrane concentration), or
 /// in the order of numerics.split. Does not verify it (see plan_problem).

@@ -8,12 +8,18 @@ namespace
 {
 void read_mesh(const Section& m, Mesh& mesh)
 {
-  m.allow_only({"remesh_every", "points_across_interface", "refine_threshold", "max_levels"});
+  m.allow_only({"remesh_every", "points_across_interface", "refine_threshold", "max_levels",
+                "cell_meshes", "own_margin"});
   mesh.remesh_every = m.integer("remesh_every", mesh.remesh_every, non_negative());
   mesh.points_across_interface =
       m.number("points_across_interface", mesh.points_across_interface, positive());
   mesh.refine_threshold = m.number("refine_threshold", mesh.refine_threshold, open(0, 1));
   mesh.max_levels = m.integer("max_levels", mesh.max_levels, closed(0, 20));
+  mesh.cell_meshes = m.choice<Mesh::CellMeshes>(
+      "cell_meshes", mesh.cell_meshes,
+      {{"shared", Mesh::CellMeshes::shared}, {"own", Mesh::CellMeshes::own}});
+  if (m.has("own_margin"))
+    mesh.own_margin = m.number("own_margin", positive());
 }
 
 void read_limits(const Section& l, Model model, Limits& limits)
@@ -57,6 +63,21 @@ void read_numerics(const Section& top, Scene& s)
                             "gamma W(phi^n) (phase_field.mobility_law) changes it every step; "
                             "use taylor");
   read_mesh(n.section("mesh"), num.mesh);
+  if (num.mesh.cell_meshes == Mesh::CellMeshes::own)
+  {
+    const Section m = n.section("mesh");
+    // A patch would have to wrap around a periodic face (not built).
+    if (!s.domain.periodic.empty())
+      m.fail("cell_meshes", "own meshes need a domain without periodic axes (domain.periodic "
+                            "is set); use cell_meshes: shared");
+    if (s.phase_field.model == Model::allen_cahn_volume)
+      m.fail("cell_meshes", "own meshes do not suit allen_cahn_volume, whose multiplier (2.27) "
+                            "acts on the whole domain; use cell_meshes: shared");
+    if (num.mesh.own_margin && *num.mesh.own_margin < 2 * num.epsilon)
+      m.fail("own_margin", "found " + fmt(*num.mesh.own_margin) + ", expected at least "
+                               "2 epsilon = " + fmt(2 * num.epsilon)
+                               + " (phi must be -1 to round-off at the patch edge)");
+  }
   read_limits(n.section("limits"), s.phase_field.model, num.limits);
   read_petsc_options(n.section("petsc"), num.petsc);
   if (n.has("split"))

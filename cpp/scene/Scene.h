@@ -114,6 +114,13 @@ struct Mesh
   double points_across_interface = 6;
   double refine_threshold = 0.95;    ///< cells with |phi| below this are refined
   int max_levels = 8;                ///< safety cap on refinement levels
+  /// Where each phase field is solved: on the one mesh refined around all cells (shared),
+  /// or on its own patch of the base mesh refined around its cell only (own), which makes
+  /// the cells' cost linear in their number (section 7.2).
+  enum class CellMeshes { shared, own } cell_meshes = CellMeshes::shared;
+  /// Own meshes: distance kept between the cell's band (phi > -0.999) and the edge of its
+  /// patch, so that the cell may move that far between two remeshes; default 8 epsilon.
+  std::optional<double> own_margin;
 };
 
 /// Bounds beyond which a run counts as failed numerically and stops (section "limits").

@@ -1,0 +1,84 @@
+// Point location in the local cells of a mesh (internal to compat/): bounding-box trees
+// are built once per mesh, so that a field evaluated again and again at other meshes'
+// nodes (transfers between meshes refined from the same base mesh) pays for them once.
+#pragma once
+#include "compat/Dolfinx.h"
+#include <dolfinx/geometry/BoundingBoxTree.h>
+#include <dolfinx/geometry/utils.h>
+#include <algorithm>
+#include <numeric>
+
+namespace cellphase::compat::detail
+{
+inline std::vector<std::int32_t> all_local_cells(const Mesh& m)
+{
+  auto map = m.topology().index_map(m.topology().dim());
+  std::vector<std::int32_t> cells(map->size_local() + map->num_ghosts());
+  std::iota(cells.begin(), cells.end(), 0);
+  return cells;
+}
+
+class PointLocator
+{
+public:
+  explicit PointLocator(std::shared_ptr<const Mesh> m)
+      : mesh_(m), cells_(all_local_cells(*m)),
+        tree_(*m, m->topology().dim(), cells_, 1e-10)
+  {
+    auto x = m->geometry().x();
+    double extent = 0;
+    for (int d = 0; d < 3; ++d)
+    {
+      double lo = 1e300, hi = -1e300;
+      for (std::size_t i = d; i < x.size(); i += 3)
+        lo = std::min(lo, x[i]), hi = std::max(hi, x[i]);
+      extent = std::max(extent, hi - lo);
+    }
+    round_off_ = 1e-9 * extent;
+  }
+
+  /// The local cell holding each point (N x 3). Points missed by round-off on cell
+  /// boundaries take the closest cell; with `outside_is_missing`, points farther than
+  /// round-off from every local cell get -1 (they lie outside this mesh's part).
+  std::vector<std::int32_t> locate(std::span<const double> pts, bool outside_is_missing = false) const
+  {
+    const std::size_t n = pts.size() / 3;
+    std::vector<std::int32_t> cells(n, -1);
+    if (cells_.empty())
+      return cells;
+    auto candidates = dolfinx::geometry::compute_collisions(tree_, pts);
+    auto colliding = dolfinx::geometry::compute_colliding_cells(*mesh_, candidates, pts);
+    std::vector<std::size_t> missed;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (colliding.num_links(i) > 0)
+        cells[i] = colliding.links(i)[0];
+      else
+        missed.push_back(i);
+    }
+    if (missed.empty())
+      return cells;
+    if (!midpoint_tree_)
+      midpoint_tree_ = std::make_unique<dolfinx::geometry::BoundingBoxTree>(
+          dolfinx::geometry::create_midpoint_tree(*mesh_, mesh_->topology().dim(), cells_));
+    std::vector<double> mp;
+    for (auto i : missed)
+      mp.insert(mp.end(), pts.begin() + 3 * i, pts.begin() + 3 * i + 3);
+    auto closest = dolfinx::geometry::compute_closest_entity(tree_, *midpoint_tree_, *mesh_, mp);
+    std::vector<double> d2;
+    if (outside_is_missing)
+      d2 = dolfinx::geometry::squared_distance(*mesh_, mesh_->topology().dim(), closest, mp);
+    for (std::size_t j = 0; j < missed.size(); ++j)
+      if (!outside_is_missing || d2[j] <= round_off_ * round_off_)
+        cells[missed[j]] = closest[j];
+    return cells;
+  }
+
+private:
+  std::shared_ptr<const Mesh> mesh_;
+  std::vector<std::int32_t> cells_;
+  dolfinx::geometry::BoundingBoxTree tree_;
+  mutable std::unique_ptr<dolfinx::geometry::BoundingBoxTree> midpoint_tree_;
+  double round_off_;
+};
+} // namespace cellphase::compat::detail

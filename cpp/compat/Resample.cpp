@@ -1,0 +1,106 @@
+#include "compat/Resample.h"
+#include "compat/PointLocator.h"
+#include <dolfinx/fem/interpolate.h>
+
+namespace cellphase::compat
+{
+using namespace dolfinx;
+using detail::PointLocator;
+
+PointEvaluator make_evaluator(std::shared_ptr<const Function> u, double outside)
+{
+  auto locator = std::make_shared<PointLocator>(u->function_space()->mesh());
+  return [u, locator, outside](std::span<const double> pts, std::span<double> values)
+  {
+    const std::size_t n = pts.size() / 3;
+    auto cells = locator->locate(pts, true);
+    u->eval(pts, {n, 3}, cells, values, {n, 1}); // leaves the values of cells -1 untouched
+    for (std::size_t i = 0; i < n; ++i)
+      if (cells[i] < 0)
+        values[i] = outside;
+  };
+}
+
+Resampler::Resampler(std::shared_ptr<const Function> from, std::shared_ptr<Function> to,
+                     std::vector<std::int32_t> cells, double outside)
+    : from_(from), to_(to), cells_(std::move(cells)), outside_(outside)
+{
+  auto V = to->function_space();
+  value_size_ = V->element()->value_size();
+  if (from->function_space()->element()->value_size() != value_size_)
+    throw std::invalid_argument("Resampler: the fields differ in value size");
+  if (cells_.empty())
+    cells_ = detail::all_local_cells(*V->mesh());
+  // interpolation_coords returns 3 rows (x, y, z) of N points; eval wants N rows of 3.
+  const std::vector<double> X = fem::interpolation_coords(*V->element(), *V->mesh(), cells_);
+  const std::size_t n = X.size() / 3;
+  points_.resize(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d)
+      points_[3 * i + d] = X[d * n + i];
+  from_cells_ = PointLocator(from->function_space()->mesh()).locate(points_, true);
+}
+
+void Resampler::apply()
+{
+  const std::size_t n = points_.size() / 3, vs = value_size_;
+  std::vector<double> values(n * vs, outside_); // N rows of vs
+  from_->eval(points_, {n, 3}, from_cells_, values, {n, vs});
+  for (std::size_t i = 0; i < n; ++i)
+    if (from_cells_[i] < 0)
+      for (std::size_t c = 0; c < vs; ++c)
+        values[i * vs + c] = outside_;
+  std::vector<double> rows(n * vs); // vs rows of N, as interpolate wants
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < vs; ++c)
+      rows[c * n + i] = values[i * vs + c];
+  fem::interpolate(*to_, std::span<const T>(rows), {vs, n}, std::span<const std::int32_t>(cells_));
+}
+
+std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const Mesh> patch)
+{
+  const std::int32_t ncells = num_owned_cells(mesh);
+  std::vector<double> mid;
+  mid.reserve(3 * ncells);
+  for (std::int32_t c = 0; c < ncells; ++c)
+  {
+    const auto v = cell_vertex_coordinates(mesh, c);
+    const std::size_t nv = v.size() / 3;
+    for (int d = 0; d < 3; ++d)
+    {
+      double x = 0;
+      for (std::size_t i = 0; i < nv; ++i)
+        x += v[3 * i + d] / double(nv);
+      mid.push_back(x);
+    }
+  }
+  const auto found = PointLocator(patch).locate(mid, true);
+  std::vector<std::int32_t> inside;
+  for (std::int32_t c = 0; c < ncells; ++c)
+    if (found[c] >= 0)
+      inside.push_back(c);
+  return inside;
+}
+
+std::shared_ptr<Mesh> create_patch(const Mesh& base, const Box& box)
+{
+  const int tdim = base.topology().dim();
+  std::vector<std::int32_t> cells;
+  for (std::int32_t c = 0; c < num_owned_cells(base); ++c)
+  {
+    const auto v = cell_vertex_coordinates(base, c);
+    bool meets = true;
+    for (int d = 0; d < 3 && meets; ++d)
+    {
+      double lo = 1e300, hi = -1e300;
+      for (std::size_t i = d; i < v.size(); i += 3)
+        lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+      meets = hi >= box[d] && lo <= box[3 + d];
+    }
+    if (meets)
+      cells.push_back(c);
+  }
+  auto sub = mesh::create_submesh(base, tdim, std::span<const std::int32_t>(cells));
+  return std::make_shared<Mesh>(std::move(std::get<0>(sub)));
+}
+} // namespace cellphase::compat

@@ -1,0 +1,43 @@
+// Fields that live on different meshes refined from the same base mesh (a cell's own
+// patch and the flow's mesh, section 7.2): evaluation with a value outside the mesh a
+// field lives on, repeated transfers whose points are located once, and patches of the
+// base mesh. Rank-local like compat::transfer: children stay on their base cell's rank.
+#pragma once
+#include "compat/Dolfinx.h"
+#include <array>
+#include <memory>
+
+namespace cellphase::compat
+{
+/// Axis-aligned box: lower corner, then upper corner.
+using Box = std::array<double, 6>;
+
+/// Point evaluator of u; points outside the local part of u's mesh (beyond round-off)
+/// get `outside` (a field that is constant there, phi = -1 outside a cell's patch).
+PointEvaluator make_evaluator(std::shared_ptr<const Function> u, double outside);
+
+/// to <- from at the interpolation points of the given local cells of to's mesh (all
+/// cells if empty), repeatedly: the points are located in from's mesh once, at
+/// construction. Points outside from's mesh take `outside`. Scalar or vector fields.
+class Resampler
+{
+public:
+  Resampler(std::shared_ptr<const Function> from, std::shared_ptr<Function> to,
+            std::vector<std::int32_t> cells, double outside);
+  void apply();
+
+private:
+  std::shared_ptr<const Function> from_;
+  std::shared_ptr<Function> to_;
+  std::vector<std::int32_t> cells_, from_cells_;
+  std::vector<double> points_;
+  double outside_;
+  int value_size_;
+};
+
+/// Local cells of `mesh` whose midpoint lies in a local cell of `patch`.
+std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const Mesh> patch);
+
+/// The local cells of `base` that meet `box`, as a mesh of their own (no redistribution).
+std::shared_ptr<Mesh> create_patch(const Mesh& base, const Box& box);
+} // namespace cellphase::compat

@@ -1,0 +1,52 @@
+#include "mesh/OwnMesh.h"
+#include <limits>
+
+namespace cellphase
+{
+OwnMesh::OwnMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base)
+    : scene_(scene), base_(base),
+      margin_(scene.numerics.mesh.own_margin.value_or(8 * scene.numerics.epsilon))
+{
+}
+
+std::shared_ptr<Mesh> OwnMesh::build(const PointEvaluator& phi, const compat::Box& band)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    box_[a] = band[a] - margin_;
+    box_[3 + a] = band[3 + a] + margin_;
+  }
+  refined_ = std::make_unique<AdaptiveMesh>(scene_, compat::create_patch(*base_, box_));
+  return refined_->build(phi);
+}
+
+std::shared_ptr<Mesh> OwnMesh::replay(const compat::Box& patch_box,
+                                      const std::vector<std::vector<double>>& history)
+{
+  box_ = patch_box;
+  refined_ = std::make_unique<AdaptiveMesh>(scene_, compat::create_patch(*base_, box_));
+  return refined_->replay(history);
+}
+
+compat::Box box_above(const Function& f, double level)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  compat::Box box{inf, inf, inf, -inf, -inf, -inf};
+  auto x = f.function_space()->tabulate_dof_coordinates(false);
+  auto values = f.x()->array();
+  const std::size_t owned = f.function_space()->dofmap()->index_map->size_local();
+  for (std::size_t i = 0; i < owned; ++i)
+    if (values[i] > level)
+      for (int a = 0; a < 3; ++a)
+      {
+        box[a] = std::min(box[a], x[3 * i + a]);
+        box[3 + a] = std::max(box[3 + a], x[3 * i + a]);
+      }
+  for (int a = 0; a < 3; ++a)
+    box[3 + a] = -box[3 + a]; // one MIN reduction for both ends
+  MPI_Allreduce(MPI_IN_PLACE, box.data(), 6, MPI_DOUBLE, MPI_MIN, f.function_space()->mesh()->comm());
+  for (int a = 0; a < 3; ++a)
+    box[3 + a] = -box[3 + a];
+  return box;
+}
+} // namespace cellphase

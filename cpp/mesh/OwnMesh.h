@@ -1,0 +1,39 @@
+// A cell's own mesh (numerics.mesh.cell_meshes: own, section 7.2): the patch of the base
+// mesh around the cell's band, grown by a margin, refined around that cell's zero level set
+// only. Its size does not depend on the other cells, so N cells cost N times one cell.
+// Patches are cut from the same base mesh as the shared mesh (no redistribution), so
+// fields move between them rank-locally.
+#pragma once
+#include "compat/Resample.h"
+#include "mesh/AdaptiveMesh.h"
+
+namespace cellphase
+{
+class OwnMesh
+{
+public:
+  /// `base` is the scene's base mesh (the shared mesh's).
+  OwnMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base);
+
+  /// The patch of base cells meeting `band` (the box of the cell's band phi > -0.999)
+  /// grown by the margin, refined around the zero level set of phi.
+  std::shared_ptr<Mesh> build(const PointEvaluator& phi, const compat::Box& band);
+  /// The mesh of an earlier build again (checkpoints): its patch box and history.
+  std::shared_ptr<Mesh> replay(const compat::Box& patch_box,
+                               const std::vector<std::vector<double>>& history);
+  const compat::Box& patch_box() const { return box_; }
+  const std::vector<std::vector<double>>& history() const { return refined_->history(); }
+  int levels() const { return refined_ ? refined_->levels() : 0; }
+  double margin() const { return margin_; }
+
+private:
+  const scene::Scene& scene_;
+  std::shared_ptr<Mesh> base_;
+  double margin_;
+  compat::Box box_{};
+  std::unique_ptr<AdaptiveMesh> refined_;
+};
+
+/// Box of the nodes where f > level over all ranks (empty, min > max, if there are none).
+compat::Box box_above(const Function& f, double level);
+} // namespace cellphase
