@@ -12,13 +12,14 @@ from ufl import (Coefficient, FunctionSpace, TestFunctions, TrialFunctions, ds, 
                  inner, split)
 
 from cellphase_ufl import (ADVECTION_DEGREE, QDEG, W, advection, constants, dW, ddW, domain,
-                           mixed, velocity)
+                           mixed, velocity, own_mesh_advection)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
 u0 = Coefficient(Wsp)  # (phi^n, mu^n)
 phi0, mu0 = split(u0)
 v = velocity()
+own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
 dt, eps, gamma, S, degenerate, cos_theta = constants("dt", "eps", "gamma", "S", "degenerate",
                                                     "cos_theta")
 dxq = dx(metadata={"quadrature_degree": QDEG})
@@ -31,10 +32,11 @@ common = (phi * psi / dt + mu * nu - eps * inner(grad(phi), grad(nu))) * dx \
     + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)        # v . grad phi, 2.8
 # Taylor linearisation of W'(phi) about phi^n (section 5.3)
 a = common - ddW(phi0) / eps * phi * nu * dxq
-L = phi0 * psi / dt * dx + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dxq + wall
+patch = own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
+L = phi0 * psi / dt * dx + patch + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dxq + wall
 # Stabilised: W'(phi^n) + S (phi - phi^n), constant matrix
 a_stab = common - S / eps * phi * nu * dx
-L_stab = phi0 * psi / dt * dx + (dW(phi0) - S * phi0) / eps * nu * dxq + wall
+L_stab = phi0 * psi / dt * dx + patch + (dW(phi0) - S * phi0) / eps * nu * dxq + wall
 
 energy = (eps / 2 * inner(grad(phi0), grad(phi0)) + W(phi0) / eps) * dxq
 

@@ -33,6 +33,15 @@ def advection(phi, psi, v):
     return -phi * dot(v, grad(psi))
 
 
+def own_mesh_advection(psi, v, own_mesh):
+    """On a cell's own mesh (own_mesh = 1) phi + 1 is advected instead of phi: the same for
+    div v = 0, but phi + 1 vanishes at the patch's edge, where v.n != 0, so the boundary term
+    that -phi v . grad(psi) drops is zero there too (section 7.2). This is the phi-free part
+    of -(phi + 1) v . grad(psi), on the right-hand side; own_mesh = 0 on the shared mesh."""
+    from ufl import dot, grad
+    return own_mesh * dot(v, grad(psi))
+
+
 # The advection term is integrated with its exact degree (P2 * P2 * grad P1 = 5), a rule of
 # its own: FFCx then emits it as a separate block, and the code (and round-off) of the other
 # terms is the same as without flow, where the block adds exact zeros.

@@ -11,7 +11,7 @@ from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialF
                  TrialFunctions, dx, grad, inner, split)
 
 from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, constants, dddW0, ddW0,
-                           domain, dW0, kappa_of, mixed, velocity)
+                           domain, dW0, kappa_of, mixed, velocity, own_mesh_advection)
 
 Wsp = FunctionSpace(domain, mixed(3))
 (phi, mu, w), (psi, nu, zeta) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -22,12 +22,14 @@ dt, eps, gamma, Be, H0, S, lam_a, sigma = constants("dt", "eps", "gamma", "Be", 
 dxq = dx(metadata={"quadrature_degree": QDEG})
 kappa0 = kappa_of(phi0, mu0, H0)
 v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
+own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
 
 common = (phi * psi / dt + gamma * inner(grad(w), grad(psi))
           + w * zeta + 1 / Be * inner(grad(mu), grad(zeta))
           + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
     + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
-rhs_common = phi0 * psi / dt * dx + (lam_a / Be + sigma) * kappa0 * zeta * dxq
+rhs_common = phi0 * psi / dt * dx + (lam_a / Be + sigma) * kappa0 * zeta * dxq \
+    + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
 
 # Taylor linearisation as in helfrich_l2.py (section 5.3)
 a = common + (1 / (Be * eps**2) * (ddW0(phi0, eps, H0) * mu + dddW0(phi0, eps, H0) * mu0 * phi)

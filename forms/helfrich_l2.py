@@ -9,7 +9,7 @@ from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialF
                  TrialFunctions, dx, grad, inner, split)
 
 from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, constants, dddW0, ddW0,
-                           domain, dW0, kappa_of, mixed, velocity)
+                           domain, dW0, kappa_of, mixed, velocity, own_mesh_advection)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi_test, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -26,12 +26,15 @@ dxq = dx(metadata={"quadrature_degree": QDEG})
 g = gamma / Be
 kappa0 = kappa_of(phi0, mu0, H0)
 v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
+own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
 
 # Linear part shared by both time discretisations (Lap mu integrated by parts)
 common = (phi * psi / dt - g * inner(grad(mu), grad(psi))
           + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
     + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
-rhs_common = phi0 * psi / dt * dx - (g * (lam_v + lam_a * kappa0) + gamma * sigma * kappa0) * psi * dxq
+rhs_common = phi0 * psi / dt * dx \
+    - (g * (lam_v + lam_a * kappa0) + gamma * sigma * kappa0) * psi * dxq \
+    + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
 
 # Taylor linearisation (section 5.3):
 #   W0''(phi) mu ~ W0''(phi^n) mu + W0'''(phi^n) mu^n (phi - phi^n)

@@ -264,10 +264,11 @@ std::string PhaseFieldSubProblem::patch_problem() const
     const double gap = std::min(low_inside ? band[a] - patch_box_[a] : 1e300,
                                 high_inside ? patch_box_[3 + a] - band[3 + a] : 1e300);
     if (gap < margin / 4)
-      return format("the cell%s came within %.3g of the edge of its own mesh (band phi > "
+    if (gap < margin / 4)
+      return format("cell%s came within %.3g of the edge of its own mesh (band phi > "
                     "-0.999, numerics.mesh.own_margin = %g): remesh more often "
                     "(numerics.mesh.remesh_every) or widen the margin",
-                    group_.label_suffix.c_str(), gap, margin);
+                    groups_ > 1 ? (" " + group_.name).c_str() : "", gap, margin);
   }
   return "";
 }
