@@ -2,15 +2,17 @@
 
 N = 1, 2, 4, ... circles of radius 0.25 on a square lattice of spacing 0.8 (a fixed area
 fraction: the domain grows with N), each its own phase field (helfrich_hm1 with the
-repulsive interaction), in a Stokes flow with no-slip walls, serial. Every cell is solved on
-the one mesh refined around all cells (there are no per-cell meshes yet), so each cell's
-system grows with N as well: this measures how far that is from cost linear in N.
+repulsive interaction), in a Stokes flow with no-slip walls, serial. Each cell is solved on
+its own mesh (numerics.mesh.cell_meshes: own), and up to --shared-up-to cells also on the
+one mesh refined around all cells (cell_meshes: shared), side by side in the same run, with
+the largest difference of the observables between the two at the largest such N.
 
 Writes benchmarks/results/multicell-scaling.{csv,md,png}:
-n_cells,dofs_flow,dofs_cells_total,wall_per_step_s,cells_part_s,flow_s,remesh_s
+n_cells,dofs_flow,dofs_cells_total,wall_per_step_s,cells_part_s,flow_s,remesh_s,cell_meshes
 (medians over the steps after the first), and the fitted exponents.
 
     /usr/bin/python3 benchmarks/multicell_scaling.py [--cells 1 2 4 8] [--steps 6]
+                                                     [--shared-up-to 8]
 """
 import argparse
 import csv
@@ -28,7 +30,7 @@ RESULTS = ROOT / "benchmarks" / "results"
 OUT = ROOT / "output" / "benchmarks" / "multicell"
 
 
-def scene(n, steps):
+def scene(n, steps, meshes):
     side = math.ceil(math.sqrt(n))
     rows = math.ceil(n / side)
     spacing = 0.8
@@ -44,25 +46,27 @@ def scene(n, steps):
         "interaction": {"In": 0.1},
         "flow": {"equations": "stokes", "force": [1.0, 0.0]},
         "numerics": {"epsilon": 0.04, "dt": 5e-3, "end_time": steps * 5e-3,
-                     "mesh": {"remesh_every": 3, "points_across_interface": 4}},
-        "output": {"directory": str(OUT / f"n{n}"), "every": 0, "progress": False},
+                     "mesh": {"remesh_every": 3, "points_across_interface": 4,
+                              "cell_meshes": meshes}},
+        "output": {"directory": str(OUT / f"{meshes}-n{n}"), "every": 0, "progress": False},
     }
     if n == 1:
         del s["interaction"]  # nothing to interact with
     return s
 
 
-def measure(n, steps):
+def measure(n, steps, meshes):
     OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / f"n{n}.yaml"
-    path.write_text(yaml.safe_dump(scene(n, steps)))
+    path = OUT / f"{meshes}-n{n}.yaml"
+    path.write_text(yaml.safe_dump(scene(n, steps, meshes)))
     t0 = time.time()
     proc = subprocess.run([str(EXE), "run", str(path)], capture_output=True, text=True)
     if proc.returncode != 0:
         raise SystemExit(f"cellphase failed on {path}:\n{proc.stdout}{proc.stderr}")
     wall = time.time() - t0
-    with open(OUT / f"n{n}" / "observables.csv") as f:
-        rows = list(csv.DictReader(f))[2:]  # steps 2.. (step 1 builds the solvers)
+    with open(OUT / f"{meshes}-n{n}" / "observables.csv") as f:
+        every_row = list(csv.DictReader(f))
+    rows = every_row[2:]  # steps 2.. (step 1 builds the solvers)
     col = lambda k: [float(r[k]) for r in rows]  # noqa: E731
     total = [a + f + s + m for a, f, s, m in zip(col("wall_assembly"), col("wall_factorise"),
                                                  col("wall_solve"), col("wall_remesh"))]
@@ -73,7 +77,24 @@ def measure(n, steps):
     return {"n_cells": n, "dofs_flow": flow_dofs, "dofs_cells_total": dofs - flow_dofs,
             "wall_per_step_s": statistics.median(total), "cells_part_s": statistics.median(cells),
             "flow_s": statistics.median(flow),
-            "remesh_s": statistics.mean(col("wall_remesh")), "run_s": wall}
+            "remesh_s": statistics.mean(col("wall_remesh")), "run_s": wall,
+            "cell_meshes": meshes, "observables": every_row}
+
+
+def largest_difference(a, b):
+    """Largest difference of the observables (not timings, not dofs) of two runs, relative
+    to max(1, |value|), and its column."""
+    worst, where = 0.0, ""
+    for k in a[0]:
+        if k.startswith("wall_") or k in ("dofs", "flow_dofs", "remesh_volume_change",
+                                          "inclination_deg"):
+            continue
+        for ra, rb in zip(a, b):
+            x, y = float(ra[k]), float(rb[k])
+            d = abs(x - y) / max(1.0, abs(x))
+            if d > worst:
+                worst, where = d, k
+    return worst, where
 
 
 def exponent(rows, key, lo):
@@ -89,21 +110,27 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--cells", type=int, nargs="+", default=[1, 2, 4, 8])
     p.add_argument("--steps", type=int, default=6)
+    p.add_argument("--shared-up-to", type=int, default=8,
+                   help="also run cell_meshes: shared up to this N (its cost grows as N^2)")
     a = p.parse_args()
-    rows = []
+    all_rows = []
     for n in a.cells:
-        r = measure(n, a.steps)
-        rows.append(r)
-        print(f"N = {n:3d}: {r['dofs_cells_total']:8d} cell dofs, {r['dofs_flow']:7d} flow dofs, "
-              f"{r['wall_per_step_s']:.3f} s/step (cells {r['cells_part_s']:.3f}, flow "
-              f"{r['flow_s']:.3f}, remesh {r['remesh_s']:.3f}), run {r['run_s']:.0f} s", flush=True)
+        for meshes in ["own"] + (["shared"] if n <= a.shared_up_to else []):
+            r = measure(n, a.steps, meshes)
+            all_rows.append(r)
+            print(f"N = {n:3d} {meshes:6s}: {r['dofs_cells_total']:8d} cell dofs, "
+                  f"{r['dofs_flow']:7d} flow dofs, {r['wall_per_step_s']:.3f} s/step (cells "
+                  f"{r['cells_part_s']:.3f}, flow {r['flow_s']:.3f}, remesh {r['remesh_s']:.3f}), "
+                  f"run {r['run_s']:.0f} s", flush=True)
+    rows = [r for r in all_rows if r["cell_meshes"] == "own"]
+    shared = [r for r in all_rows if r["cell_meshes"] == "shared"]
     RESULTS.mkdir(parents=True, exist_ok=True)
     keys = ["n_cells", "dofs_flow", "dofs_cells_total", "wall_per_step_s", "cells_part_s",
-            "flow_s", "remesh_s"]
+            "flow_s", "remesh_s", "cell_meshes"]
     with open(RESULTS / "multicell-scaling.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
         w.writeheader()
-        w.writerows(rows)
+        w.writerows(all_rows)
     lo = 4 if max(a.cells) > 4 else 1
     e_step, e_cells = exponent(rows, "wall_per_step_s", lo), exponent(rows, "cells_part_s", lo)
     e_dofs = exponent(rows, "dofs_cells_total", lo)
@@ -112,10 +139,13 @@ def main():
     import matplotlib.pyplot as plt
     n = [r["n_cells"] for r in rows]
     fig, ax = plt.subplots(figsize=(5, 4))
-    for key, label in [("wall_per_step_s", f"whole step (exponent {e_step:.2f})"),
-                       ("cells_part_s", f"cells' part (exponent {e_cells:.2f})"),
+    for key, label in [("wall_per_step_s", f"whole step, own meshes (exponent {e_step:.2f})"),
+                       ("cells_part_s", f"cells' part, own meshes (exponent {e_cells:.2f})"),
                        ("flow_s", "flow")]:
         ax.loglog(n, [r[key] for r in rows], "o-", label=label)
+    if shared:
+        ax.loglog([r["n_cells"] for r in shared], [r["wall_per_step_s"] for r in shared], "s--",
+                  label="whole step, shared mesh")
     ax.loglog(n, [rows[0]["cells_part_s"] * x for x in n], "k:", label="linear in N")
     ax.set_xlabel("cells N")
     ax.set_ylabel("wall time per step [s]")
@@ -124,15 +154,27 @@ def main():
     fig.savefig(RESULTS / "multicell-scaling.png", dpi=120)
     lines = ["# Time per step against the number of cells", "",
              f"{time.strftime('%Y-%m-%d')}, this machine (2 cores, shared), serial, "
-             f"`benchmarks/multicell_scaling.py --cells {' '.join(map(str, a.cells))} --steps {a.steps}`.",
-             "One mesh refined around all cells; every cell's phase field is solved on it.", "",
-             "| N | flow dofs | cell dofs (all) | s/step | cells' part s | flow s | remesh s |",
-             "|---|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['n_cells']} | {r['dofs_flow']} | {r['dofs_cells_total']} | "
-                     f"{r['wall_per_step_s']:.3f} | {r['cells_part_s']:.3f} | {r['flow_s']:.3f} | "
-                     f"{r['remesh_s']:.3f} |")
-    lines += ["", f"Fitted exponents from N = {lo}: whole step {e_step:.2f}, cells' part "
+             f"`benchmarks/multicell_scaling.py --cells {' '.join(map(str, a.cells))} --steps {a.steps} "
+             f"--shared-up-to {a.shared_up_to}`.",
+             "own: each cell's phase field on its own mesh (patch of the base mesh refined around "
+             "that cell); shared: on the one mesh refined around all cells.", "",
+             "| N | cell meshes | flow dofs | cell dofs (all) | s/step | cells' part s | flow s | remesh s |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in all_rows:
+        lines.append(f"| {r['n_cells']} | {r['cell_meshes']} | {r['dofs_flow']} | "
+                     f"{r['dofs_cells_total']} | {r['wall_per_step_s']:.3f} | "
+                     f"{r['cells_part_s']:.3f} | {r['flow_s']:.3f} | {r['remesh_s']:.3f} |")
+    if shared:
+        m = max(r["n_cells"] for r in shared)
+        own_m = next(r for r in rows if r["n_cells"] == m)
+        sh_m = next(r for r in shared if r["n_cells"] == m)
+        diff, col = largest_difference(own_m["observables"], sh_m["observables"])
+        lines += ["", f"Side by side at N = {m}: own meshes {own_m['dofs_cells_total']} cell dofs, "
+                  f"{own_m['wall_per_step_s']:.3f} s/step; shared mesh {sh_m['dofs_cells_total']} "
+                  f"cell dofs, {sh_m['wall_per_step_s']:.3f} s/step (ratio "
+                  f"{sh_m['wall_per_step_s'] / own_m['wall_per_step_s']:.1f}); largest difference "
+                  f"of the observables {diff:.1e} ({col}, relative to max(1, |value|))."]
+    lines += ["", f"Fitted exponents (own meshes) from N = {lo}: whole step {e_step:.2f}, cells' part "
               f"{e_cells:.2f}, cell dofs {e_dofs:.2f} (targets: cells' part <= 1.1, step <= 1.3).",
               f"Flow share of the step at the largest N: "
               f"{rows[-1]['flow_s'] / rows[-1]['wall_per_step_s']:.0%}.", "",

@@ -386,10 +386,27 @@ std::map<std::string, std::shared_ptr<Mesh>> Simulation::rebuild_meshes()
     // Own meshes: phi = -1 beyond the old patch.
     std::vector<PointEvaluator> phases;
     std::shared_ptr<const Function> cell_phi;
+    std::shared_ptr<Function> copies; // own meshes: max_i of the copies, node by node
     for (const auto& name : fields_.names())
       if (fields_.info(name).mesh == key && fields_.shapes_mesh(name))
       {
         auto f = fields_.get(name);
+        if (fields_.info(name).level_set && key.empty())
+        {
+          // Copies of the cells' phase fields share one space: one evaluation of their
+          // maximum instead of one per cell (the marking then costs the same for any N).
+          if (!copies)
+          {
+            copies = std::make_shared<Function>(f->function_space());
+            copies->x()->set(-1.0);
+            phases.push_back(compat::make_evaluator(copies));
+          }
+          auto m = copies->x()->mutable_array();
+          auto x = f->x()->array();
+          for (std::size_t i = 0; i < m.size(); ++i)
+            m[i] = std::max(m[i], x[i]);
+          continue;
+        }
         phases.push_back(key.empty() ? compat::make_evaluator(f)
                                      : compat::make_evaluator(f, fields_.info(name).outside));
         if (fields_.info(name).transfer == Transfer::keep_integral)

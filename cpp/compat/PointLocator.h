@@ -18,11 +18,13 @@ inline std::vector<std::int32_t> all_local_cells(const Mesh& m)
   return cells;
 }
 
+/// Holds no reference to the mesh: its user keeps the mesh alive (a function on it), and
+/// a cache of locators may outlive meshes without keeping them.
 class PointLocator
 {
 public:
   explicit PointLocator(std::shared_ptr<const Mesh> m)
-      : mesh_(m), cells_(all_local_cells(*m)),
+      : mesh_(m.get()), cells_(all_local_cells(*m)),
         tree_(*m, m->topology().dim(), cells_, 1e-10)
   {
     auto x = m->geometry().x();
@@ -75,7 +77,7 @@ public:
   }
 
 private:
-  std::shared_ptr<const Mesh> mesh_;
+  const Mesh* mesh_;
   std::vector<std::int32_t> cells_;
   dolfinx::geometry::BoundingBoxTree tree_;
   mutable std::unique_ptr<dolfinx::geometry::BoundingBoxTree> midpoint_tree_;

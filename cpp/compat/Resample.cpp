@@ -7,9 +7,25 @@ namespace cellphase::compat
 using namespace dolfinx;
 using detail::PointLocator;
 
+namespace
+{
+/// One locator per live mesh: the shared mesh serves every cell's transfers, and its trees
+/// are built once per remesh instead of once per cell.
+std::shared_ptr<const PointLocator> locator_of(std::shared_ptr<const Mesh> mesh)
+{
+  static std::vector<std::pair<std::weak_ptr<const Mesh>, std::shared_ptr<const PointLocator>>> cache;
+  std::erase_if(cache, [](const auto& e) { return e.first.expired(); });
+  for (const auto& [m, locator] : cache)
+    if (m.lock() == mesh)
+      return locator;
+  cache.emplace_back(mesh, std::make_shared<const PointLocator>(mesh));
+  return cache.back().second;
+}
+} // namespace
+
 PointEvaluator make_evaluator(std::shared_ptr<const Function> u, double outside)
 {
-  auto locator = std::make_shared<PointLocator>(u->function_space()->mesh());
+  auto locator = locator_of(u->function_space()->mesh());
   return [u, locator, outside](std::span<const double> pts, std::span<double> values)
   {
     const std::size_t n = pts.size() / 3;
@@ -38,7 +54,7 @@ Resampler::Resampler(std::shared_ptr<const Function> from, std::shared_ptr<Funct
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d)
       points_[3 * i + d] = X[d * n + i];
-  from_cells_ = PointLocator(from->function_space()->mesh()).locate(points_, true);
+  from_cells_ = locator_of(from->function_space()->mesh())->locate(points_, true);
 }
 
 void Resampler::apply()
@@ -59,26 +75,37 @@ void Resampler::apply()
 
 std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const Mesh> patch)
 {
-  const std::int32_t ncells = num_owned_cells(mesh);
+  // Candidates by the patch's local bounding box (cheap), then located in the patch.
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  auto px = patch->geometry().x();
+  for (std::size_t i = 0; i < px.size(); i += 3)
+    for (int d = 0; d < 3; ++d)
+      lo[d] = std::min(lo[d], px[i + d]), hi[d] = std::max(hi[d], px[i + d]);
+  std::vector<std::int32_t> candidates;
   std::vector<double> mid;
-  mid.reserve(3 * ncells);
-  for (std::int32_t c = 0; c < ncells; ++c)
+  for (std::int32_t c = 0; c < num_owned_cells(mesh); ++c)
   {
     const auto v = cell_vertex_coordinates(mesh, c);
     const std::size_t nv = v.size() / 3;
+    std::array<double, 3> m{0, 0, 0};
+    bool in_box = true;
     for (int d = 0; d < 3; ++d)
     {
-      double x = 0;
       for (std::size_t i = 0; i < nv; ++i)
-        x += v[3 * i + d] / double(nv);
-      mid.push_back(x);
+        m[d] += v[3 * i + d] / double(nv);
+      in_box = in_box && m[d] >= lo[d] && m[d] <= hi[d];
+    }
+    if (in_box)
+    {
+      candidates.push_back(c);
+      mid.insert(mid.end(), m.begin(), m.end());
     }
   }
-  const auto found = PointLocator(patch).locate(mid, true);
+  const auto found = locator_of(patch)->locate(mid, true);
   std::vector<std::int32_t> inside;
-  for (std::int32_t c = 0; c < ncells; ++c)
-    if (found[c] >= 0)
-      inside.push_back(c);
+  for (std::size_t k = 0; k < candidates.size(); ++k)
+    if (found[k] >= 0)
+      inside.push_back(candidates[k]);
   return inside;
 }
 
