@@ -1,5 +1,7 @@
 #include "physics/FlowSubProblem.h"
 #include "app/FlowSetup.h"
+#include "mesh/PointLookup.h"
+#include "scene/Formula.h"
 #include "physics/FormTable.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
@@ -35,6 +37,7 @@ void FlowSubProblem::attach(FieldRegistry& fields)
   {
     auto phi = fields.get("cell.phi");
     flow_.attach(phi->function_space()->mesh(), phi, fields.get("cell.potential"), v, membrane);
+    prepare_cell_force(phi);
   }
   else
   {
@@ -58,6 +61,7 @@ void FlowSubProblem::attach(FieldRegistry& fields)
     force_solver_ = std::make_unique<LinearSolver>(comm_, "force_", std::map<std::string, std::string>{},
                                                    Symmetry::positive_definite);
     force_solver_->set_operator(force_mass_->mat());
+    prepare_cell_force(phi_cells);
   }
   fields.set("flow.v", flow_.velocity());
   fields.set("flow.p", flow_.pressure());
@@ -79,13 +83,60 @@ double FlowSubProblem::project_interface_force()
   return seconds_since(t0);
 }
 
+void FlowSubProblem::prepare_cell_force(std::shared_ptr<const Function> phi_cells)
+{
+  phi_cells_ = phi_cells;
+  cell_force_.clear();
+  phi_dof_at_node_.clear();
+  if (!scene_.flow->cell_force)
+    return;
+  const int dim = scene_.domain.dim;
+  const scene::VectorFormula F(*scene_.flow->cell_force, dim);
+  auto V = flow_.membrane_force()->function_space();
+  const auto x = V->tabulate_dof_coordinates(false); // one row of 3 per node
+  const auto y = phi_cells->function_space()->tabulate_dof_coordinates(false);
+  // The two spaces have the same P2 nodes, numbered independently: match them by position.
+  double extent = 0;
+  for (int a = 0; a < dim; ++a)
+    extent = std::max(extent, scene_.domain.upper[a] - scene_.domain.lower[a]);
+  const PointLookup nodes(y, 1e-10 * extent);
+  for (std::size_t n = 0; n < x.size() / 3; ++n)
+  {
+    const auto f = F(x[3 * n], x[3 * n + 1], x[3 * n + 2]);
+    cell_force_.insert(cell_force_.end(), f.begin(), f.begin() + dim);
+    const std::int64_t k = nodes.find(&x[3 * n]);
+    if (k < 0)
+      throw std::logic_error("flow.cell_force: a velocity node has no phase-field dof");
+    phi_dof_at_node_.push_back(std::int32_t(k));
+  }
+}
+
+void FlowSubProblem::add_cell_force()
+{
+  auto f = flow_.membrane_force()->x()->mutable_array();
+  auto phi = phi_cells_->x()->array();
+  const std::size_t dim = scene_.domain.dim;
+  for (std::size_t n = 0; n < phi_dof_at_node_.size(); ++n)
+  {
+    const double weight = (1 + phi[phi_dof_at_node_[n]]) / 2; // phi~ of the cells, (2.14)
+    for (std::size_t c = 0; c < dim; ++c)
+      f[n * dim + c] += weight * cell_force_[n * dim + c];
+  }
+}
+
 StepTimings FlowSubProblem::step(double dt)
 {
   StepTimings t;
   if (groups_.size() == 1)
+  {
     flow_.set_area_target(fields_->scalar("cell.area_target")); // (3.69), fixed at the start
+    if (!cell_force_.empty())
+      flow_.membrane_force()->x()->set(0.0); // f_membrane holds only the cell force
+  }
   else
     t.assemble += project_interface_force(); // of phi^n, mu^n as the single-cell force
+  if (!cell_force_.empty())
+    add_cell_force();
   const FlowTimings f = flow_.step(dt);
   t.assemble += f.assemble;
   t.factorise = f.factorise;

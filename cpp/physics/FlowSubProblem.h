@@ -27,6 +27,10 @@ public:
 private:
   /// Several cells: f_membrane <- L2 projection of sum_i capillary mu_i grad phi_i (7.12).
   double project_interface_force();
+  /// flow.cell_force: F(x) at the velocity nodes and the phase-field dof at each node.
+  void prepare_cell_force(std::shared_ptr<const Function> phi_cells);
+  /// f_membrane += F(x) (1 + phi_cells)/2 at the nodes (section 7.3.1).
+  void add_cell_force();
 
   const scene::Scene& scene_;
   MPI_Comm comm_;
@@ -37,5 +41,9 @@ private:
   std::vector<std::shared_ptr<Form>> force_forms_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> force_mass_;
   std::unique_ptr<LinearSolver> force_solver_;
+  // flow.cell_force, rebuilt on every mesh
+  std::shared_ptr<const Function> phi_cells_;
+  std::vector<double> cell_force_;           ///< F at the nodes of f_membrane (node-major)
+  std::vector<std::int32_t> phi_dof_at_node_; ///< phi_cells' dof at each of those nodes
 };
 } // namespace cellphase

@@ -1,4 +1,5 @@
 #include "physics/InteractionSubProblem.h"
+#include "mesh/OwnMesh.h"
 #include "physics/FormTable.h"
 #include "util/Clock.h"
 #include <algorithm>
@@ -13,6 +14,17 @@ InteractionSubProblem::InteractionSubProblem(scene::PlanStep step, const scene::
       interaction_(scene.interaction), groups_(scene::cell_groups(scene)),
       own_(scene::own_meshes(scene))
 {
+  // Beyond `reach` from a cell's zero level set its w_j is below 1e-12 of its scale
+  // (Gaussians of widths r2, a3 around 0 and a2 eps) and B(phi_j) below 1e-10 / eps.
+  double reach = 10;
+  if (interaction_)
+  {
+    const auto& in = *interaction_;
+    reach = std::max(reach, std::sqrt(27.7 * in.r2));
+    if (in.a1 != 0)
+      reach = std::max(reach, std::abs(in.a2) + std::sqrt(27.7 * in.a3));
+  }
+  reach_level_ = std::max(-std::tanh(reach / std::sqrt(2.0)), -1 + 1e-12); // (7.3), d in eps
   for (const auto& g : groups_)
     phis_.push_back(scene::state_field(scene, g, "phi"));
 }
@@ -102,23 +114,16 @@ InteractionSubProblem::Samples InteractionSubProblem::sample(std::size_t i, std:
 
 std::array<double, 6> InteractionSubProblem::band_box(const Function& phi) const
 {
-  const double inf = std::numeric_limits<double>::infinity();
-  std::array<double, 6> box{inf, inf, inf, -inf, -inf, -inf};
-  auto x = phi.function_space()->tabulate_dof_coordinates(false);
-  auto values = phi.x()->array();
-  for (std::size_t i = 0; i < values.size(); ++i)
-    if (std::abs(values[i]) < 1 - 1e-12)
-      for (int a = 0; a < 3; ++a)
-      {
-        box[a] = std::min(box[a], x[3 * i + a]);
-        box[3 + a] = std::max(box[3 + a], x[3 * i + a]);
-      }
-  for (int a = 0; a < 3; ++a)
-    box[3 + a] = -box[3 + a]; // one MIN reduction for both ends
-  MPI_Allreduce(MPI_IN_PLACE, box.data(), 6, MPI_DOUBLE, MPI_MIN, comm_);
-  for (int a = 0; a < 3; ++a)
-    box[3 + a] = -box[3 + a];
-  return box;
+  return box_above(phi, reach_level_);
+}
+
+std::array<double, 6> InteractionSubProblem::common_box(const std::array<double, 6>& a,
+                                                        const std::array<double, 6>& b)
+{
+  std::array<double, 6> c;
+  for (int d = 0; d < 3; ++d)
+    c[d] = std::max(a[d], b[d]), c[3 + d] = std::min(a[3 + d], b[3 + d]);
+  return c;
 }
 
 void InteractionSubProblem::update_sums()
@@ -138,7 +143,8 @@ void InteractionSubProblem::update_sums()
     for (std::size_t j = 0; j < n; ++j)
       if (j != i && boxes_meet(boxes[i], boxes[j]))
       {
-        const Samples s = sample(i, j, boxes[j]);
+        // Own meshes: only where both bands reach; the source (7.11) has a factor of cell i.
+        const Samples s = sample(i, j, own_ ? common_box(boxes[i], boxes[j]) : boxes[j]);
         for (std::size_t m = 0; m < s.nodes.size(); ++m)
         {
           w[s.nodes[m]] += interaction_w(s.values[m], eps_, shape);
@@ -169,7 +175,7 @@ void InteractionSubProblem::observe(Observation& row)
       energy += compat::assemble_scalar(*form) / interaction_->In; // (7.5)
   }
   // Largest overlap of two cells at the nodes: max_x min(phi~_i, phi~_j), phi~ = (1+phi)/2.
-  // With own meshes only pairs whose band boxes meet (elsewhere one phi~ is below 1e-12).
+  // With own meshes only pairs whose band boxes meet (elsewhere one phi~ is below 1e-6).
   double worst = 0;
   std::vector<std::array<double, 6>> boxes;
   for (const auto& name : phis_)
@@ -181,7 +187,7 @@ void InteractionSubProblem::observe(Observation& row)
     {
       if (own_ && !boxes_meet(boxes[i], boxes[j]))
         continue;
-      const Samples s = sample(i, j, boxes[j]);
+      const Samples s = sample(i, j, own_ ? common_box(boxes[i], boxes[j]) : boxes[j]);
       for (std::size_t m = 0; m < s.nodes.size(); ++m)
         worst = std::max(worst, std::min(1 + phi_i[s.nodes[m]], 1 + s.values[m]) / 2);
     }

@@ -28,9 +28,11 @@ public:
   void observe(Observation& row) override;
 
 private:
-  /// Bounding box (min x, y, z, max x, y, z) of a phase field's band over all ranks; empty
-  /// (min > max) if it has none.
+  /// Bounding box (min x, y, z, max x, y, z) over all ranks of the nodes where a phase
+  /// field's interaction does not vanish (phi > reach_level_); empty (min > max) if none.
   std::array<double, 6> band_box(const Function& phi) const;
+  static std::array<double, 6> common_box(const std::array<double, 6>& a,
+                                          const std::array<double, 6>& b);
   /// phi_j at the nodes of phi_i's mesh: all nodes when they share the mesh; with own
   /// meshes the nodes inside phi_j's band box, where phi_j is evaluated on its own mesh
   /// (elsewhere |phi_j| >= 1 - 1e-12, where w_j vanishes and B(phi_j) is below 1e-24/eps).
@@ -52,6 +54,7 @@ private:
   std::vector<std::shared_ptr<Function>> w_sum_, B_sum_;
   std::vector<std::shared_ptr<Form>> energy_;
   bool own_; ///< each phase field on its own mesh (numerics.mesh.cell_meshes: own)
+  double reach_level_; ///< phi at the distance beyond which w_j and B(phi_j) vanish
   std::vector<PointEvaluator> evaluate_;    ///< own meshes: phi_j, -1 beyond its mesh
   std::vector<std::vector<double>> nodes_;  ///< own meshes: node coordinates of phi_i's space
 };

@@ -98,6 +98,13 @@ void flow_report(const Scene& s, Report& r)
                             + " (relative, (2.56))");
   r.line("  body force", "rho(phi) " + vector_text(f.gravity, dim) + " + "
                              + vector_text(f.force, dim));
+  if (f.cell_force)
+  {
+    std::string F = "(";
+    for (int c = 0; c < dim; ++c)
+      F += (c ? ", " : "") + (*f.cell_force)[c];
+    r.line("  force on the cells", F + ") (1 + phi_cells)/2");
+  }
   const double cap = flow_capillary(s);
   if (s.phase_field.model == Model::helfrich_hm1)
     r.line("  interface force", "w grad phi (3.59), w = dE/dphi (3.62)");

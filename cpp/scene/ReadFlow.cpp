@@ -41,13 +41,10 @@ const std::vector<std::pair<std::string, WallType>> wall_types{
     {"open", WallType::open},
     {"prescribed", WallType::prescribed}};
 
-/// velocity of a prescribed wall: one formula (or number) per component in x, y, z.
-std::array<std::string, 3> read_profile(const Section& s, int dim)
+/// A vector of formulas (or numbers), one per component, in x, y, z.
+std::array<std::string, 3> read_formulas(const Section& s, const std::string& key, int dim)
 {
-  if (!s.has("velocity"))
-    s.fail("velocity", "missing; a prescribed wall needs its velocity profile (a list of "
-                           + std::to_string(dim) + " formulas in x, y, z, e.g. [\"4*y*(1-y)\", 0])");
-  const Value v = s.value("velocity");
+  const Value v = s.value(key);
   if (!v.node.IsSequence() || v.node.size() != std::size_t(dim))
     v.fail("found " + v.found() + ", expected a list of " + std::to_string(dim)
            + " formulas in x, y, z (numbers or text), one per component");
@@ -63,6 +60,15 @@ std::array<std::string, 3> read_profile(const Section& s, int dim)
       e.fail("cannot parse the formula \"" + out[c] + "\": " + error);
   }
   return out;
+}
+
+/// velocity of a prescribed wall: one formula (or number) per component in x, y, z.
+std::array<std::string, 3> read_profile(const Section& s, int dim)
+{
+  if (!s.has("velocity"))
+    s.fail("velocity", "missing; a prescribed wall needs its velocity profile (a list of "
+                           + std::to_string(dim) + " formulas in x, y, z, e.g. [\"4*y*(1-y)\", 0])");
+  return read_formulas(s, "velocity", dim);
 }
 
 WallSpec read_wall(const Section& walls, const std::string& side, int dim)
@@ -171,8 +177,8 @@ void read_flow(const Section& top, Scene& s)
   if (!top.has("flow"))
     return;
   const Section f = top.section("flow");
-  f.allow_only({"equations", "density", "viscosity", "gravity", "force", "surface_tension",
-                "walls", "petsc", "inextensibility"});
+  f.allow_only({"equations", "density", "viscosity", "gravity", "force", "cell_force",
+                "surface_tension", "walls", "petsc", "inextensibility"});
   const Model m = s.phase_field.model;
   if (!couples_to_flow(m))
     top.fail("flow", std::string("phase_field.model ") + to_string(m)
@@ -187,6 +193,8 @@ void read_flow(const Section& top, Scene& s)
   flow.viscosity = read_pair(f, "viscosity");
   flow.gravity = read_vector(f, "gravity", dim);
   flow.force = read_vector(f, "force", dim);
+  if (f.has("cell_force")) // F(x) (1 + phi_cells)/2, the force on the cells of section 7.3
+    flow.cell_force = read_formulas(f, "cell_force", dim);
   if (f.has("surface_tension"))
   {
     if (is_helfrich(m))

@@ -1,3 +1,4 @@
+#include "scene/Plan.h"
 #include "scene/Sections.h"
 #include <algorithm>
 
@@ -27,6 +28,8 @@ void read_output(const Section& top, Scene& s)
   {
     allowed.push_back("v"); // velocity and pressure of the flow
     allowed.push_back("p");
+    if (s.flow->inextensibility || cell_groups(s).size() > 1)
+      allowed.push_back("phi_cells"); // max_i phi_i (7.14), the flow's phase
     if (s.flow->inextensibility)
     {
       allowed.push_back("lambda"); // multiplier of (3.67)

@@ -211,6 +211,9 @@ struct Flow
   std::array<double, 2> viscosity{1, 1}; ///< relative to the reference: {outside, inside}
   std::array<double, 3> gravity{0, 0, 0}; ///< body force per unit relative density
   std::array<double, 3> force{0, 0, 0};   ///< constant body force density
+  /// Body force on the cells only: F(x) (1 + phi_cells)/2 with F given by one formula per
+  /// component in x, y, z (section 7.3.1: 0.5 (phi + 1) f1 / Fr).
+  std::optional<std::array<std::string, 3>> cell_force;
   std::optional<double> surface_tension;  ///< sigma (dimensionless); default from Ca
   std::array<WallSpec, 6> walls;          ///< by side, see side_names (box domains)
   /// Mesh-file domains: by tag name; every tag not listed is no_slip, and so is the

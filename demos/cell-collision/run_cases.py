@@ -1,0 +1,141 @@
+"""The six cases of Fig. 7.3 (thesis section 7.3.1) from demos/cell-collision/scene.yaml:
+
+  (a) one phase field for both cells          (b) the same with inextensibility
+  (c) two phase fields                        (d) the same with inextensibility
+  (e) two phase fields and the potential      (f) the same with inextensibility
+
+Runs them (two at a time), then draws output/cell-collision/fig-7-3.png: one row per case,
+one column per time (0.2, 0.4, 0.6 and the end), with the streamlines of v, the zero level
+set of the cells' phase field (black) and its -0.8 level set (blue), as in Fig. 7.3.
+
+    /usr/bin/python3 demos/cell-collision/run_cases.py [--cases a b c d e f] [--plot-only]
+                                                       [--set KEY=VALUE ...]
+"""
+import argparse
+import concurrent.futures
+import copy
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import yaml
+
+HERE = pathlib.Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(ROOT / "python"))
+from cellphase_results import read_fields  # noqa: E402
+
+EXE = ROOT / "build" / "cellphase"
+OUT = ROOT / "output" / "cell-collision"
+CASES = {
+    "a": "one phase field",
+    "b": "one phase field, inextensible",
+    "c": "two phase fields",
+    "d": "two phase fields, inextensible",
+    "e": "two phase fields, interaction (In = 0.01)",
+    "f": "two phase fields, interaction, inextensible",
+}
+TIMES = [0.2, 0.4, 0.6, None]  # None: the end of the run
+
+
+def case_scene(base, case):
+    s = copy.deepcopy(base)
+    if case in "ab":
+        for c in s["cells"]:
+            c["group"] = "cells"  # both shapes in one phase field, case (a) of Fig. 7.3
+    if case in "abcd":
+        s.pop("interaction", None)
+    if case in "bdf":
+        s["flow"]["inextensibility"] = {"xi": 1}  # local inextensibility (7.14)-(7.16)
+    if case == "a":  # one phase field and no constraint: no union phi_cells, phi is it
+        s["output"]["fields"] = [f for f in s["output"]["fields"] if f != "phi_cells"]
+    s["output"]["directory"] = str(OUT / case)
+    return s
+
+
+def run(case, overrides):
+    scene = case_scene(yaml.safe_load((HERE / "scene.yaml").read_text()), case)
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / f"case-{case}.yaml"
+    path.write_text(yaml.safe_dump(scene))
+    cmd = [str(EXE), "run", str(path)] + [a for o in overrides for a in ("--set", o)]
+    with open(OUT / f"case-{case}.log", "w") as log:
+        proc = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT)
+    return case, proc.returncode
+
+
+def snapshot(run_dir, wanted):
+    """The output time nearest to each wanted time (None: the last one)."""
+    frames = list(read_fields(run_dir))
+    if not frames:
+        raise SystemExit(f"{run_dir}: no fields written")
+    field_names = frames[0][3].keys()
+    phase = "phi_cells" if "phi_cells" in field_names else "phi"
+    out = []
+    for t in wanted:
+        frame = frames[-1] if t is None else min(frames, key=lambda f: abs(f[0] - t))
+        out.append((frame, phase))
+    return out
+
+
+def draw(cases):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import matplotlib.tri as mtri
+    fig, axes = plt.subplots(len(cases), len(TIMES), figsize=(3.2 * len(TIMES), 1.25 * len(cases) + 0.4),
+                             squeeze=False, constrained_layout=True)
+    for row, case in enumerate(cases):
+        for col, ((time, points, cells, values), phase) in enumerate(snapshot(OUT / case, TIMES)):
+            ax = axes[row][col]
+            tri = mtri.Triangulation(points[:, 0], points[:, 1], cells[:, :3])
+            if "v" in values:
+                # Streamlines on a regular grid (linear interpolation of the P2 nodes' values).
+                gx, gy = np.meshgrid(np.linspace(0, 5.25, 106), np.linspace(0, 1.75, 36))
+                v = values["v"]
+                u = mtri.LinearTriInterpolator(tri, v[:, 0])(gx, gy)
+                w = mtri.LinearTriInterpolator(tri, v[:, 1])(gx, gy)
+                ax.streamplot(gx, gy, u.filled(0), w.filled(0), density=0.7, color="0.6",
+                              linewidth=0.5, arrowsize=0.5)
+            ax.tricontour(tri, values[phase], levels=[-0.8], colors="tab:blue", linewidths=0.8,
+                          linestyles="solid")
+            ax.tricontour(tri, values[phase], levels=[0.0], colors="k", linewidths=1.0)
+            ax.set(xlim=(0, 5.25), ylim=(0, 1.75), xticks=[], yticks=[])
+            ax.set_aspect("equal")
+            if row == 0:
+                ax.set_title(f"t = {time:g}", fontsize=9)
+            if col == 0:
+                ax.set_ylabel(f"({case})", rotation=0, labelpad=12, fontsize=9)
+    fig.suptitle("Two cells pushed together (thesis Fig. 7.3): " + "; ".join(
+        f"({c}) {CASES[c]}" for c in cases), fontsize=7)
+    path = OUT / "fig-7-3.png"
+    fig.savefig(path, dpi=130)
+    print(f"wrote {path}")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
+    p.add_argument("--plot-only", action="store_true", help="draw the figure from earlier runs")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="override for every case (as cellphase run --set)")
+    p.add_argument("--parallel", type=int, default=2, help="cases run at the same time")
+    a = p.parse_args()
+    done = a.cases
+    if not a.plot_only:
+        done = []
+        with concurrent.futures.ThreadPoolExecutor(a.parallel) as pool:
+            for case, rc in pool.map(lambda c: run(c, a.set), a.cases):
+                print(f"case ({case}) {CASES[case]}: "
+                      + ("done" if rc == 0 else f"failed (exit {rc}), see {OUT / f'case-{case}.log'}"),
+                      flush=True)
+                if rc == 0:
+                    done.append(case)
+    if not done:
+        raise SystemExit("no case finished: nothing to draw")
+    draw(done)
+
+
+if __name__ == "__main__":
+    main()
