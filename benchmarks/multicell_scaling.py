@@ -81,13 +81,13 @@ def measure(n, steps, meshes):
             "cell_meshes": meshes, "observables": every_row}
 
 
-def largest_difference(a, b):
+def largest_difference(a, b, keep=lambda k: True):
     """Largest difference of the observables (not timings, not dofs) of two runs, relative
-    to max(1, |value|), and its column."""
+    to max(1, |value|), and its column; `keep` selects the columns."""
     worst, where = 0.0, ""
     for k in a[0]:
         if k.startswith("wall_") or k in ("dofs", "flow_dofs", "remesh_volume_change",
-                                          "inclination_deg"):
+                                          "inclination_deg") or not keep(k):
             continue
         for ra, rb in zip(a, b):
             x, y = float(ra[k]), float(rb[k])
@@ -174,6 +174,14 @@ def main():
                   f"cell dofs, {sh_m['wall_per_step_s']:.3f} s/step (ratio "
                   f"{sh_m['wall_per_step_s'] / own_m['wall_per_step_s']:.1f}); largest difference "
                   f"of the observables {diff:.1e} ({col}, relative to max(1, |value|))."]
+        kinds = [("total energy", lambda k: k == "total_energy"),
+                 ("centres", lambda k: ".center_" in k), ("volumes", lambda k: k.endswith(".volume")),
+                 ("Helfrich energies", lambda k: k.endswith(".helfrich_energy")),
+                 ("overlap", lambda k: k == "overlap_max"),
+                 ("area multipliers", lambda k: k.endswith(".lambda_area"))]
+        lines += ["By quantity: " + ", ".join(
+            f"{name} {largest_difference(own_m['observables'], sh_m['observables'], keep)[0]:.1e}"
+            for name, keep in kinds) + "."]
     lines += ["", f"Fitted exponents (own meshes) from N = {lo}: whole step {e_step:.2f}, cells' part "
               f"{e_cells:.2f}, cell dofs {e_dofs:.2f} (targets: cells' part <= 1.1, step <= 1.3).",
               f"Flow share of the step at the largest N: "
