@@ -186,7 +186,9 @@ Simulation::LoopState Simulation::initialise()
         for (std::size_t i = 0; i < values.size(); ++i)
           values[i] = own(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
       };
-      fields_.set_mesh(key, own_meshes_.at(key).build(cell, box_above(*probe, own_band_level)));
+      auto& own_mesh = own_meshes_.at(key);
+      auto patch = own_mesh.build(cell, box_above(*probe, own_band_level));
+      fields_.set_mesh(key, patch, own_mesh.patch_box());
     }
     auto phi = std::make_shared<Function>(fields_.space(key, FieldSpace::scalar_p2));
     compat::interpolate(*phi, formula);
@@ -282,7 +284,7 @@ Simulation::LoopState Simulation::restore()
         std::vector<std::vector<double>> own_history;
         for (int level = 0; level < int(data.scalar(m + "levels")); ++level)
           own_history.push_back(data.array(m + "refined_centroids." + std::to_string(level)));
-        fields_.set_mesh(key, own.replay(box, own_history));
+        fields_.set_mesh(key, own.replay(box, own_history), box);
       }
     }
     catch (const std::runtime_error& e)
@@ -439,7 +441,8 @@ double Simulation::remesh(double& volume_change)
     if (auto f = fields_.find(name))
       old[name] = f;
   for (auto& [key, mesh] : rebuild_meshes())
-    fields_.set_mesh(key, mesh);
+    fields_.set_mesh(key, mesh, key.empty() ? std::nullopt
+                                            : std::optional(own_meshes_.at(key).patch_box()));
 
   std::map<std::string, std::shared_ptr<Function>> moved;
   volume_change = 0;

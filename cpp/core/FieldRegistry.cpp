@@ -63,9 +63,10 @@ double FieldRegistry::scalar(const std::string& name) const
   return it->second;
 }
 
-void FieldRegistry::set_mesh(const std::string& key, std::shared_ptr<Mesh> mesh)
+void FieldRegistry::set_mesh(const std::string& key, std::shared_ptr<Mesh> mesh,
+                             std::optional<std::array<double, 6>> cut)
 {
-  meshes_[key] = {mesh, nullptr, nullptr};
+  meshes_[key] = {mesh, nullptr, nullptr, cut};
 }
 
 std::shared_ptr<Mesh> FieldRegistry::mesh(const std::string& key) const

@@ -5,7 +5,9 @@
 // declared once, by its owner, and nothing else changes.
 #pragma once
 #include "compat/Dolfinx.h"
+#include <array>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,7 +70,15 @@ public:
 
   /// The meshes the fields live on, by the key of FieldInfo::mesh ("" the shared mesh);
   /// set by the time loop before every attach.
-  void set_mesh(const std::string& key, std::shared_ptr<Mesh> mesh);
+  /// `cut` is the box a cell's own mesh was cut around (its band grown by the margin).
+  void set_mesh(const std::string& key, std::shared_ptr<Mesh> mesh,
+                std::optional<std::array<double, 6>> cut = std::nullopt);
+  /// The box mesh `key` was cut around, if it is a cell's own mesh.
+  std::optional<std::array<double, 6>> cut_box(const std::string& key) const
+  {
+    auto it = meshes_.find(key);
+    return it == meshes_.end() ? std::nullopt : it->second.cut;
+  }
   /// Throws std::out_of_range naming the key if there is no such mesh.
   std::shared_ptr<Mesh> mesh(const std::string& key) const;
   /// The space of a kind (scalar_p2, vector_p2) on mesh `key`: built once per mesh and
@@ -97,6 +107,7 @@ private:
   {
     std::shared_ptr<Mesh> mesh;
     std::shared_ptr<Space> scalar, vector;
+    std::optional<std::array<double, 6>> cut;
   };
   std::map<std::string, MeshEntry> meshes_;
 };

@@ -36,11 +36,6 @@ double volume_of(std::shared_ptr<const Space> V)
   return integral_of(one);
 }
 
-compat::Box box_of(const Mesh& mesh)
-{
-  const auto b = compat::bounding_box(mesh);
-  return {b[0][0], b[0][1], b[0][2], b[1][0], b[1][1], b[1][2]};
-}
 } // namespace
 
 void PhaseFieldSubProblem::declare(FieldRegistry& fields)
@@ -115,8 +110,7 @@ void PhaseFieldSubProblem::attach(FieldRegistry& fields)
     update_copies();
     patch_volume_ = volume_of(module_.space());
     shared_volume_ = volume_of(fields.space("", FieldSpace::scalar_p2));
-    patch_box_ = box_of(*patch);
-    domain_box_ = box_of(*fields.mesh(""));
+    cut_box_ = fields.cut_box(group_.prefix).value();
     if (cell_volume_target_ >= 0) // int phi over this patch for the same int (1 + phi)
       module_.set_targets({cell_volume_target_ - patch_volume_, module_.targets().area});
   }
@@ -252,24 +246,19 @@ void PhaseFieldSubProblem::observe(Observation& row)
 
 std::string PhaseFieldSubProblem::patch_problem() const
 {
-  // The cell's band may approach its patch's edge (inside the domain) to a quarter of the
-  // margin: beyond, phi is no longer -1 where the patch ends.
+  // The cell's band may approach the box its mesh was cut around to a quarter of the
+  // margin: beyond, phi is no longer -1 where the mesh ends. (A side of the box beyond a
+  // wall is never approached: the band stays inside the domain.)
   const double margin = scene_.numerics.mesh.own_margin.value_or(8 * scene_.numerics.epsilon);
   const auto band = box_above(*module_.fields().at("phi"), -0.999);
-  const double tol = 1e-9 * (domain_box_[3] - domain_box_[0]);
+  double gap = 1e300;
   for (int a = 0; a < scene_.domain.dim; ++a)
-  {
-    const bool low_inside = patch_box_[a] > domain_box_[a] + tol;
-    const bool high_inside = patch_box_[3 + a] < domain_box_[3 + a] - tol;
-    const double gap = std::min(low_inside ? band[a] - patch_box_[a] : 1e300,
-                                high_inside ? patch_box_[3 + a] - band[3 + a] : 1e300);
-    if (gap < margin / 4)
-    if (gap < margin / 4)
-      return format("cell%s came within %.3g of the edge of its own mesh (band phi > "
-                    "-0.999, numerics.mesh.own_margin = %g): remesh more often "
-                    "(numerics.mesh.remesh_every) or widen the margin",
-                    groups_ > 1 ? (" " + group_.name).c_str() : "", gap, margin);
-  }
+    gap = std::min({gap, band[a] - cut_box_[a], cut_box_[3 + a] - band[3 + a]});
+  if (gap < margin / 4)
+    return format("cell%s came within %.3g of the edge of its own mesh (band phi > "
+                  "-0.999, numerics.mesh.own_margin = %g): remesh more often "
+                  "(numerics.mesh.remesh_every) or widen the margin",
+                  groups_ > 1 ? (" " + group_.name).c_str() : "", gap, margin);
   return "";
 }
 

@@ -64,7 +64,7 @@ private:
   std::unique_ptr<compat::Resampler> velocity_in_;            ///< flow.v -> own mesh
   std::shared_ptr<Function> velocity_;                         ///< flow.v on the own mesh
   double patch_volume_ = 0, shared_volume_ = 0;               ///< |own mesh|, |shared mesh|
-  compat::Box patch_box_{}, domain_box_{};
+  compat::Box cut_box_{}; ///< the box its own mesh was cut around
   /// int (1 + phi), the volume target that does not depend on the patch; < 0 until start().
   double cell_volume_target_ = -1;
 };
