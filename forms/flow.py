@@ -65,9 +65,15 @@ J = -(rho1 - rho0) / 2 * mobility * (1 - degenerate + degenerate * W(phi)) * gra
 dxq = dx(metadata={"quadrature_degree": QDEG})
 
 
-def momentum_a(v, p, w, q, inertia=True):
+# Several cells with viscosities of their own: eta(phi_1, ..., phi_N) of (7.12),
+# eta_0 (1 - phi_cells)/2 + sum_i eta_i (1 + phi_i)/2, given at the P2 nodes by the coupling.
+eta_cells = Coefficient(Vphi)
+
+
+def momentum_a(v, p, w, q, inertia=True, eta=eta):
     """Bilinear form of one step of (2.47)/(2.56)/(2.57) for trial (v, p), test (w, q);
-    without `inertia` the Stokes system (Re = 0) with none of the Re terms."""
+    without `inertia` the Stokes system (Re = 0) with none of the Re terms; `eta` the
+    viscosity (default eta(phi) of (2.56))."""
     viscous = 2 * eta * inner(D(v), D(w))  # -div(2 eta(phi) D(v)), (2.49)/(2.56) (written
     #   eta D there; with the factor 2, eta = 1 and div v = 0 give the Lap v of 5.3 (1))
     pressure = (-p * div(w)                                           # grad p, (2.47)/(2.56)
@@ -103,6 +109,9 @@ a = momentum_a(v, p, w, q)
 L = momentum_L(w)
 # Re = 0: the same system without the inertial terms, which the module then skips
 a_stokes = momentum_a(v, p, w, q, inertia=False)
+# The same with the cells' own viscosities (7.12)
+a_cells = momentum_a(v, p, w, q, eta=eta_cells)
+a_stokes_cells = momentum_a(v, p, w, q, inertia=False, eta=eta_cells)
 L_stokes = momentum_L(w, inertia=False)
 
 # Observables of the current velocity (v0 after a step)
@@ -116,7 +125,7 @@ pressure_integral = p_h * dx
 domain_volume = one * dx
 
 forms = [a, L, a_stokes, L_stokes, kinetic_energy, divergence_sq, phase_weight, phase_velocity_0,
-         phase_velocity_1, pressure_integral, domain_volume]
+         phase_velocity_1, pressure_integral, domain_volume, a_cells, a_stokes_cells]
 if DIM == 3:
     phase_velocity_2 = phase_velocity[2]
     forms.append(phase_velocity_2)

@@ -48,6 +48,8 @@ membrane_L = (xi2 * stretch_penalty + area_source) * delta * r * dxq  # (3.71), 
 a = momentum_a(v, p, w, q) + membrane_a
 L = momentum_L(w) + membrane_L
 a_stokes = momentum_a(v, p, w, q, inertia=False) + membrane_a   # Re = 0
+a_cells = momentum_a(v, p, w, q, eta=eta_cells) + membrane_a      # the cells' viscosities (7.12)
+a_stokes_cells = momentum_a(v, p, w, q, inertia=False, eta=eta_cells) + membrane_a
 L_stokes = momentum_L(w, inertia=False) + membrane_L
 
 # Observables
@@ -58,7 +60,7 @@ lambda_dissipation = xi * eps**2 * phi_cells**2 * inner(grad(lam_h), grad(lam_h)
 lambda_membrane = lam_h * delta * dxq                                  # int lambda delta_phi
 forms = [a, L, a_stokes, L_stokes, kinetic_energy, divergence_sq, phase_weight, phase_velocity_0,
          phase_velocity_1, pressure_integral, domain_volume, membrane_delta, energy_ch,
-         lambda_dissipation, lambda_membrane]
+         lambda_dissipation, lambda_membrane, a_cells, a_stokes_cells]
 if DIM == 3:
     phase_velocity_2 = phase_velocity[2]
     forms.append(phase_velocity_2)

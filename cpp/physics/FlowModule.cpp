@@ -70,7 +70,8 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
                         std::shared_ptr<const Function> mu,
                         std::shared_ptr<const Function> velocity, MembraneFields membrane)
 {
-  for (const auto& f : {phi, mu, velocity, membrane.phi_cells, membrane.concentration})
+  for (const auto& f : {phi, mu, velocity, membrane.phi_cells, membrane.concentration,
+                        membrane.viscosity})
     if (f && f->function_space()->mesh() != mesh)
       throw std::invalid_argument("flow: phi, mu and the velocity must live on the flow's mesh"
                                   " (transfer them after a remesh)");
@@ -106,6 +107,7 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
   }
   phi_ = phi;
   mu_ = mu;
+  viscosity_ = membrane.viscosity;
   if (inextensible)
   {
     Lambda_ = compat::collapse(*W_, {2});
@@ -265,6 +267,8 @@ void FlowModule::bind_forms()
                         {"mu", mu_},
                         {"f_membrane", membrane_force_},
                         {"p_h", pressure_}};
+  if (viscosity_)
+    coeffs["eta_cells"] = viscosity_;
   if (multiplier_)
   {
     coeffs["phi_cells"] = phi_cells_;
@@ -273,7 +277,10 @@ void FlowModule::bind_forms()
   }
   // Stokes (Re = 0) skips the inertial terms instead of multiplying them by 0.
   const bool stokes = params_.Re == 0 && forms_.a_stokes;
-  a_ = compat::create_form(*(stokes ? forms_.a_stokes : forms_.a), {W_, W_}, coeffs, constants_);
+  // With the cells' own viscosities the viscous term takes eta_cells (7.12).
+  ufcx_form* a = viscosity_ ? (stokes ? forms_.a_stokes_cells : forms_.a_cells)
+                            : (stokes ? forms_.a_stokes : forms_.a);
+  a_ = compat::create_form(*a, {W_, W_}, coeffs, constants_);
   L_ = compat::create_form(*(stokes ? forms_.L_stokes : forms_.L), {W_}, coeffs, constants_);
   auto functional = [&](ufcx_form* f) -> std::shared_ptr<Form>
   { return f ? compat::create_form(*f, {}, coeffs, constants_, mesh_) : nullptr; };
@@ -318,6 +325,8 @@ bool FlowModule::local_matrix_outdated(double dt) const
   // delta_phi P_phi and phi^2 of (3.67)-(3.68) move with the membrane
   if (phi_cells_ && !same(factorised_phi_cells_, *phi_cells_))
     return true;
+  if (viscosity_ && !same(factorised_eta_, *viscosity_))
+    return true;
   return transport && !same(factorised_v_, *velocity_);
 }
 
@@ -330,6 +339,8 @@ void FlowModule::remember_matrix_inputs(double dt)
   factorised_v_ = copy_of(*velocity_);
   if (phi_cells_)
     factorised_phi_cells_ = copy_of(*phi_cells_);
+  if (viscosity_)
+    factorised_eta_ = copy_of(*viscosity_);
 }
 
 double FlowModule::area_source(double dt) const

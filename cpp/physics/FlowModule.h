@@ -102,6 +102,9 @@ struct MembraneFields
   std::shared_ptr<const Function> phi_cells;
   /// concentration c of (3.70) (null: c = 1, no penalty)
   std::shared_ptr<const Function> concentration;
+  /// eta(phi_1, ..., phi_N) of (7.12) at the P2 nodes, updated in place before each step
+  /// (null: eta(phi) of (2.56))
+  std::shared_ptr<const Function> viscosity;
 };
 
 class FlowModule
@@ -158,6 +161,7 @@ private:
   std::shared_ptr<Space> W_;
   compat::CollapsedSpace Vv_, Q_, Lambda_;
   std::shared_ptr<const Function> phi_, mu_, phi_cells_, concentration_;
+  std::shared_ptr<const Function> viscosity_; ///< eta_cells of (7.12), or null
   std::shared_ptr<Function> velocity_, pressure_, membrane_force_, multiplier_;
   std::vector<std::shared_ptr<Function>> bc_values_;
   BCs bcs_;
@@ -181,6 +185,7 @@ private:
   bool factorised_ = false;
   double factorised_dt_ = 0;
   std::vector<T> factorised_phi_, factorised_mu_, factorised_v_, factorised_phi_cells_;
+  std::vector<T> factorised_eta_;
   int factorisations_ = 0;
 };
 } // namespace cellphase

@@ -5,6 +5,7 @@
 #include "physics/FormTable.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
+#include <algorithm>
 #include <dolfinx/fem/assembler.h>
 
 namespace cellphase
@@ -13,6 +14,13 @@ FlowSubProblem::FlowSubProblem(scene::PlanStep step, const scene::Scene& scene, 
     : SubProblem(std::move(step)), scene_(scene), comm_(comm), groups_(scene::cell_groups(scene)),
       flow_(flow_parameters(scene), comm)
 {
+  bool own = false;
+  for (const auto& c : scene.cells)
+    own = own || c.viscosity.has_value();
+  if (own && groups_.size() > 1)
+    for (const auto& g : groups_)
+      group_viscosity_.push_back(
+          scene.cells[g.cells.front()].viscosity.value_or(scene.flow->viscosity[1]));
 }
 
 void FlowSubProblem::declare(FieldRegistry& fields)
@@ -45,6 +53,16 @@ void FlowSubProblem::attach(FieldRegistry& fields)
     // (mu = 0): the summed force comes as f_membrane (7.12).
     auto phi_cells = fields.get("membrane.phi_cells");
     auto mesh = phi_cells->function_space()->mesh();
+    phi_cells_ = phi_cells;
+    cell_phis_.clear();
+    for (const auto& g : groups_)
+      cell_phis_.push_back(fields.get(g.prefix + ".phi"));
+    if (!group_viscosity_.empty())
+    {
+      viscosity_ = std::make_shared<Function>(std::const_pointer_cast<Space>(phi_cells->function_space()));
+      update_viscosity();
+      membrane.viscosity = viscosity_;
+    }
     flow_.attach(mesh, phi_cells, nullptr, v, membrane);
     auto Vf = flow_.membrane_force()->function_space();
     const auto forms = interface_force_forms(mesh->topology().dim());
@@ -111,6 +129,24 @@ void FlowSubProblem::prepare_cell_force(std::shared_ptr<const Function> phi_cell
   }
 }
 
+void FlowSubProblem::update_viscosity()
+{
+  // At the P2 nodes, phi clipped to [-1, 1] as in forms/flow.py; the phase fields and
+  // phi_cells share one space (the cells' fields on the shared mesh).
+  auto eta = viscosity_->x()->mutable_array();
+  auto phi_cells = phi_cells_->x()->array();
+  const double eta0 = scene_.flow->viscosity[0];
+  auto clip = [](double p) { return std::clamp(p, -1.0, 1.0); };
+  for (std::size_t k = 0; k < eta.size(); ++k)
+    eta[k] = eta0 * (1 - clip(phi_cells[k])) / 2;
+  for (std::size_t i = 0; i < cell_phis_.size(); ++i)
+  {
+    auto phi = cell_phis_[i]->x()->array();
+    for (std::size_t k = 0; k < eta.size(); ++k)
+      eta[k] += group_viscosity_[i] * (1 + clip(phi[k])) / 2;
+  }
+}
+
 void FlowSubProblem::add_cell_force()
 {
   auto f = flow_.membrane_force()->x()->mutable_array();
@@ -134,7 +170,11 @@ StepTimings FlowSubProblem::step(double dt)
       flow_.membrane_force()->x()->set(0.0); // f_membrane holds only the cell force
   }
   else
+  {
     t.assemble += project_interface_force(); // of phi^n, mu^n as the single-cell force
+    if (viscosity_)
+      update_viscosity(); // of phi^n
+  }
   if (!cell_force_.empty())
     add_cell_force();
   const FlowTimings f = flow_.step(dt);

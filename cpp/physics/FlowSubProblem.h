@@ -31,6 +31,8 @@ private:
   void prepare_cell_force(std::shared_ptr<const Function> phi_cells);
   /// f_membrane += F(x) (1 + phi_cells)/2 at the nodes (section 7.3.1).
   void add_cell_force();
+  /// cells[i].viscosity: eta <- eta_0 (1 - phi_cells)/2 + sum_i eta_i (1 + phi_i)/2 (7.12).
+  void update_viscosity();
 
   const scene::Scene& scene_;
   MPI_Comm comm_;
@@ -45,5 +47,9 @@ private:
   std::shared_ptr<const Function> phi_cells_;
   std::vector<double> cell_force_;           ///< F at the nodes of f_membrane (node-major)
   std::vector<std::int32_t> phi_dof_at_node_; ///< phi_cells' dof at each of those nodes
+  // cells[i].viscosity (several phase fields only)
+  std::vector<double> group_viscosity_; ///< eta_i of each group; empty: eta(phi_cells) (2.56)
+  std::shared_ptr<Function> viscosity_;
+  std::vector<std::shared_ptr<const Function>> cell_phis_;
 };
 } // namespace cellphase

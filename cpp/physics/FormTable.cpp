@@ -117,6 +117,8 @@ FlowForms flow_forms(int dim, bool inextensible)
   f.L = get("L");
   f.a_stokes = get("a_stokes");
   f.L_stokes = get("L_stokes");
+  f.a_cells = get("a_cells");
+  f.a_stokes_cells = get("a_stokes_cells");
   f.kinetic_energy = get("kinetic_energy");
   f.divergence_sq = get("divergence_sq");
   f.phase_weight = get("phase_weight");

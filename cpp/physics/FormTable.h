@@ -60,6 +60,9 @@ struct FlowForms
   ufcx_form* L = nullptr;
   ufcx_form* a_stokes = nullptr; ///< the same for Re = 0, without the inertial terms
   ufcx_form* L_stokes = nullptr;
+  /// a and a_stokes with the viscosity eta_cells given at the nodes (several cells, 7.12)
+  ufcx_form* a_cells = nullptr;
+  ufcx_form* a_stokes_cells = nullptr;
   ufcx_form* kinetic_energy = nullptr;
   ufcx_form* divergence_sq = nullptr;
   ufcx_form* phase_weight = nullptr;

@@ -41,7 +41,8 @@ const char* shape_name(ShapeKind k)
 void check_keys(const Section& c, ShapeKind kind)
 {
   std::vector<std::string> allowed = {"name", "shape", "center", "rotation", "group", "Be",
-                                      "spontaneous_curvature", "mobility", "penalty_area"};
+                                      "spontaneous_curvature", "mobility", "penalty_area",
+                                      "viscosity"};
   const std::vector<std::string> own = size_keys(kind);
   allowed.insert(allowed.end(), own.begin(), own.end());
   for (const std::string& key : c.keys())
@@ -78,13 +79,16 @@ void read_cell_phase_field(const Section& c, const Scene& s, Cell& cell)
     cell.mobility = c.number("mobility", positive());
   if (c.has("penalty_area"))
     cell.penalty_area = c.number("penalty_area", non_negative());
+  if (c.has("viscosity"))
+    cell.viscosity = c.number("viscosity", positive());
   for (const Cell& other : s.cells)
     if (other.group == cell.group)
       for (const auto& [key, mine, theirs] :
            {std::tuple{"Be", cell.Be, other.Be},
             std::tuple{"spontaneous_curvature", cell.spontaneous_curvature, other.spontaneous_curvature},
             std::tuple{"mobility", cell.mobility, other.mobility},
-            std::tuple{"penalty_area", cell.penalty_area, other.penalty_area}})
+            std::tuple{"penalty_area", cell.penalty_area, other.penalty_area},
+            std::tuple{"viscosity", cell.viscosity, other.viscosity}})
         if (mine != theirs)
           c.fail(key, std::string("differs from that of ") + other.name + " in group \"" + cell.group
                           + "\"; the cells of one group share one phase field and its parameters");

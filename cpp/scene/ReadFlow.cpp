@@ -1,5 +1,6 @@
 // flow: the two-phase flow coupled to the phase field (section 2.8, 3.4.2). Absent: no flow.
 #include "scene/MeshDomain.h"
+#include "scene/Plan.h"
 #include "scene/Sections.h"
 #include "scene/Shapes.h"
 #include <algorithm>
@@ -172,10 +173,31 @@ std::optional<Inextensibility> read_inextensibility(const Section& f, Model m)
 }
 } // namespace
 
+namespace
+{
+/// cells[i].viscosity enters eta(phi_1, ..., phi_N) of (7.12): a flow and several phase
+/// fields are needed.
+void check_cell_viscosities(const Section& top, const Scene& s)
+{
+  for (std::size_t i = 0; i < s.cells.size(); ++i)
+    if (s.cells[i].viscosity)
+    {
+      const std::string key = cell_label(i, s.cells[i]) + ".viscosity";
+      if (!s.flow)
+        top.fail("cells", key + " is given, but the scene has no flow section");
+      if (cell_groups(s).size() < 2)
+        top.fail("cells", key + " is given with one phase field; use flow.viscosity.inside");
+    }
+}
+} // namespace
+
 void read_flow(const Section& top, Scene& s)
 {
   if (!top.has("flow"))
+  {
+    check_cell_viscosities(top, s);
     return;
+  }
   const Section f = top.section("flow");
   f.allow_only({"equations", "density", "viscosity", "gravity", "force", "cell_force",
                 "surface_tension", "walls", "petsc", "inextensibility"});
@@ -228,6 +250,7 @@ void read_flow(const Section& top, Scene& s)
   read_petsc_options(f.section("petsc"), flow.petsc);
   flow.inextensibility = read_inextensibility(f, m);
   s.flow = flow;
+  check_cell_viscosities(top, s);
 }
 
 } // namespace cellphase::scene

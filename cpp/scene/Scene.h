@@ -53,6 +53,8 @@ struct Cell
   /// Parameters of this cell's phase field (7.4)-(7.10); absent: those of phase_field and
   /// numbers. Cells of one group must agree.
   std::optional<double> Be, spontaneous_curvature, mobility, penalty_area;
+  /// eta_i / eta_0 of this cell in eta(phi_1, ..., phi_N) (7.12); absent: flow.viscosity.inside.
+  std::optional<double> viscosity;
 };
 
 /// Interaction between the cells' phase fields, (7.5) and (7.11), with one interaction
