@@ -1,6 +1,7 @@
 #include "physics/PhaseFieldSubProblem.h"
 #include "mesh/FieldTransfer.h"
 #include "mesh/OwnMesh.h"
+#include "physics/FormTable.h"
 #include "util/Clock.h"
 #include <algorithm>
 #include <cmath>
@@ -141,6 +142,16 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
       velocity_in_->apply();
       module_.set_velocity(velocity_);
     }
+    // The cell's velocity int phi~ v / int phi~ (as the flow's cell_velocity, of one cell).
+    auto v = own_ ? std::shared_ptr<const Function>(velocity_) : fields.get("flow.v");
+    auto phi = module_.fields().at("phi");
+    auto mesh = phi->function_space()->mesh();
+    const FlowForms forms = flow_forms(mesh->topology().dim(), false);
+    const CoefficientMap coeffs{{"phi", phi}, {"v0", v}};
+    weight_form_ = compat::create_form(*forms.phase_weight, {}, coeffs, {}, mesh);
+    velocity_forms_.clear();
+    for (int d = 0; d < mesh->topology().dim(); ++d)
+      velocity_forms_.push_back(compat::create_form(*forms.phase_velocity[d], {}, coeffs, {}, mesh));
   }
   const std::string sums = "interaction." + group_.name;
   if (fields.declared(sums + ".w_sum"))
@@ -232,9 +243,20 @@ void PhaseFieldSubProblem::observe(Observation& row)
     r.phi_min = std::min(r.phi_min, v.phi_min);
     r.phi_max = std::max(r.phi_max, v.phi_max);
   }
+  std::array<double, 3> velocity{0, 0, 0};
+  if (weight_form_)
+  {
+    const double weight = compat::assemble_scalar(*weight_form_);
+    for (std::size_t d = 0; d < velocity_forms_.size() && weight > 0; ++d)
+      velocity[d] = compat::assemble_scalar(*velocity_forms_[d]) / weight;
+  }
   if (groups_ > 1)
   {
     const std::string g = group_.name + ".";
+    if (weight_form_)
+      row.extra.insert(row.extra.end(), {{g + "velocity_x", velocity[0]},
+                                         {g + "velocity_y", velocity[1]},
+                                         {g + "velocity_z", velocity[2]}});
     row.extra.insert(row.extra.end(),
                      {{g + "volume", v.volume}, {g + "surface", v.surface},
                       {g + "helfrich_energy", v.helfrich}, {g + "total_energy", v.total_energy},

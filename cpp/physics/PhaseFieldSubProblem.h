@@ -63,6 +63,9 @@ private:
   std::vector<std::unique_ptr<compat::Resampler>> to_shared_; ///< state -> copies
   std::unique_ptr<compat::Resampler> velocity_in_;            ///< flow.v -> own mesh
   std::shared_ptr<Function> velocity_;                         ///< flow.v on the own mesh
+  /// int phi~ and int phi~ v_d of this cell (its velocity column), with a flow
+  std::shared_ptr<Form> weight_form_;
+  std::vector<std::shared_ptr<Form>> velocity_forms_;
   double patch_volume_ = 0, shared_volume_ = 0;               ///< |own mesh|, |shared mesh|
   compat::Box cut_box_{}; ///< the box its own mesh was cut around
   /// int (1 + phi), the volume target that does not depend on the patch; < 0 until start().

@@ -55,6 +55,16 @@ def test_a_viscous_cell_relaxes_more_slowly(runs):
     print(f"circularity change: eta 1 {soft:.4f}, eta 20 {stiff:.4f}")
     assert soft > 0 and stiff > 0
     assert stiff < 0.6 * soft
+    # Each cell's velocity column int phi~_i v / int phi~_i moves its centre: the mean of
+    # the column over the run against the centre's displacement (trapezoidal rule).
+    t = c["time"]
+    for cell in ("left", "right"):
+        v = c[f"{cell}.velocity_y"]
+        moved = sum((t[k + 1] - t[k]) * (v[k] + v[k + 1]) / 2 for k in range(1, len(t) - 1))
+        moved += (t[1] - t[0]) * v[1]  # the first step's velocity is v^1
+        dy = c[f"{cell}.center_y"][-1] - c[f"{cell}.center_y"][0]
+        print(f"{cell}: centre moved {dy:.5f}, velocity column gives {moved:.5f}")
+        assert abs(moved - dy) < 0.03 * abs(dy)
     # With equal viscosities the two cells mirror each other.
     d = runs["ones"]
     assert abs(d["left.circularity"][-1] - d["right.circularity"][-1]) < 1e-8
