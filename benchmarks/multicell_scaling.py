@@ -187,7 +187,12 @@ def main():
               f"Flow share of the step at the largest N: "
               f"{rows[-1]['flow_s'] / rows[-1]['wall_per_step_s']:.0%}.", "",
               "![time per step](multicell-scaling.png)", ""]
-    (RESULTS / "multicell-scaling.md").write_text("\n".join(lines))
+    # The discussion below "## What it shows" is written by hand: kept from the last report.
+    report = RESULTS / "multicell-scaling.md"
+    notes = ""
+    if report.exists() and "## What it shows" in report.read_text():
+        notes = "\n" + report.read_text()[report.read_text().index("## What it shows"):]
+    report.write_text("\n".join(lines) + notes)
     print("\n".join(lines[-6:]))
 
 

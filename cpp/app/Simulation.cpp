@@ -45,9 +45,6 @@ std::vector<std::string> split_names(const std::string& text)
 /// their sub-problem's name.
 constexpr int checkpoint_format = 2;
 
-/// A cell's own mesh is cut around the nodes where its phi exceeds this (5.4 epsilon out
-/// from the zero level set), grown by numerics.mesh.own_margin.
-constexpr double own_band_level = -0.999;
 
 /// The mesh-independent measure of a cell phase field through a change of its mesh:
 /// int (1 + phi) is kept, so int phi changes by |old mesh| - |new mesh| (zero on the

@@ -272,13 +272,13 @@ std::string PhaseFieldSubProblem::patch_problem() const
   // margin: beyond, phi is no longer -1 where the mesh ends. (A side of the box beyond a
   // wall is never approached: the band stays inside the domain.)
   const double margin = scene_.numerics.mesh.own_margin.value_or(8 * scene_.numerics.epsilon);
-  const auto band = box_above(*module_.fields().at("phi"), -0.999);
+  const auto band = box_above(*module_.fields().at("phi"), own_band_level);
   double gap = 1e300;
   for (int a = 0; a < scene_.domain.dim; ++a)
     gap = std::min({gap, band[a] - cut_box_[a], cut_box_[3 + a] - band[3 + a]});
   if (gap < margin / 4)
     return format("cell%s came within %.3g of the edge of its own mesh (band phi > "
-                  "-0.999, numerics.mesh.own_margin = %g): remesh more often "
+                  "-0.9, numerics.mesh.own_margin = %g): remesh more often "
                   "(numerics.mesh.remesh_every) or widen the margin",
                   groups_ > 1 ? (" " + group_.name).c_str() : "", gap, margin);
   return "";

@@ -6,6 +6,7 @@
 #include "scene/Sections.h"
 #include "scene/Units.h"
 #include "scene/YamlRead.h"
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -182,6 +183,9 @@ SizeEstimate estimate_size(const Scene& s)
     const double h = finest_cell_size(s);
     const double fine_volume = d.dim == 2 ? h * h / 2 : h * h * h / 6;
     e.refined_cells = e.interface_measure * band / fine_volume;
+    // Never more than the base mesh refined everywhere (a band wider than the domain).
+    const double uniform = e.base_cells * std::pow(d.dim == 2 ? 4.0 : 8.0, required_levels(s));
+    e.refined_cells = std::min(e.refined_cells, uniform - e.base_cells);
   }
   const double per_cell = d.dim == 2 ? 2.0 : 1.4; // P2 dofs per simplex, asymptotically
   e.dofs = per_cell * (e.base_cells + e.refined_cells)
@@ -280,12 +284,20 @@ std::string check_report(const Scene& s)
   r.line("epsilon", fmt(eps));
   r.line("interface width", fmt(interface_width(eps)) + " (|phi| < 0.9, 4.16 epsilon)");
   r.line("base cell size", fmt(base_cell_size(d)));
-  r.line("refinement levels", std::to_string(levels) + " (max "
-                                  + std::to_string(s.numerics.mesh.max_levels) + ")");
-  r.line("finest cell size", fmt(h));
-  r.line("points across", fmt(interface_width(eps) / h) + " mesh points across the interface "
-                              "(requested " + fmt(s.numerics.mesh.points_across_interface)
-                              + ")");
+  if (s.numerics.mesh.adaptive)
+  {
+    r.line("refinement levels", std::to_string(levels) + " (max "
+                                    + std::to_string(s.numerics.mesh.max_levels) + ")");
+    r.line("finest cell size", fmt(h));
+    r.line("points across", fmt(interface_width(eps) / h) + " mesh points across the interface "
+                                "(requested " + fmt(s.numerics.mesh.points_across_interface)
+                                + ")");
+  }
+  else
+  {
+    r.line("refinement levels", "0 (numerics.mesh.adaptive: false, the uniform base mesh)");
+    r.line("points across", fmt(interface_width(eps) / h) + " mesh points across the interface");
+  }
   r.line("remeshing", s.numerics.mesh.remesh_every > 0
                           ? "every " + std::to_string(s.numerics.mesh.remesh_every) + " steps"
                           : std::string("never (mesh built once)"));

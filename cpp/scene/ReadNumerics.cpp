@@ -8,8 +8,20 @@ namespace
 {
 void read_mesh(const Section& m, Mesh& mesh)
 {
-  m.allow_only({"remesh_every", "points_across_interface", "refine_threshold", "max_levels",
-                "cell_meshes", "own_margin"});
+  m.allow_only({"adaptive", "remesh_every", "points_across_interface", "refine_threshold",
+                "max_levels", "cell_meshes", "own_margin"});
+  mesh.adaptive = m.boolean("adaptive", mesh.adaptive);
+  if (!mesh.adaptive)
+  {
+    // The uniform base mesh: the refinement keys would have no effect.
+    for (const char* key : {"remesh_every", "points_across_interface", "refine_threshold",
+                            "max_levels"})
+      if (m.has(key))
+        m.fail(key, "has no effect with numerics.mesh.adaptive: false (the base mesh of "
+                    "domain.resolution is used as it is); remove it");
+    mesh.remesh_every = 0;
+    mesh.max_levels = 0;
+  }
   mesh.remesh_every = m.integer("remesh_every", mesh.remesh_every, non_negative());
   mesh.points_across_interface =
       m.number("points_across_interface", mesh.points_across_interface, positive());
@@ -73,10 +85,11 @@ void read_numerics(const Section& top, Scene& s)
     if (s.phase_field.model == Model::allen_cahn_volume)
       m.fail("cell_meshes", "own meshes do not suit allen_cahn_volume, whose multiplier (2.27) "
                             "acts on the whole domain; use cell_meshes: shared");
-    if (num.mesh.own_margin && *num.mesh.own_margin < 2 * num.epsilon)
+    // The edge then lies >= 8 epsilon from the zero level set, where |phi + 1| < 2e-5.
+    if (num.mesh.own_margin && *num.mesh.own_margin < 6 * num.epsilon)
       m.fail("own_margin", "found " + fmt(*num.mesh.own_margin) + ", expected at least "
-                               "2 epsilon = " + fmt(2 * num.epsilon)
-                               + " (phi must be -1 to round-off at the patch edge)");
+                               "6 epsilon = " + fmt(6 * num.epsilon)
+                               + " (phi must be -1 to 2e-5 at the edge of a cell's mesh)");
   }
   read_limits(n.section("limits"), s.phase_field.model, num.limits);
   read_petsc_options(n.section("petsc"), num.petsc);

@@ -25,6 +25,8 @@ double base_cell_size(const Domain& d)
 
 int required_levels(const Scene& s)
 {
+  if (!s.numerics.mesh.adaptive)
+    return 0; // the uniform base mesh
   const double w = interface_width(s.numerics.epsilon);
   const double p = s.numerics.mesh.points_across_interface;
   double h = base_cell_size(s.domain);

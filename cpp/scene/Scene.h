@@ -112,6 +112,8 @@ struct Numbers
 
 struct Mesh
 {
+  /// false: the base mesh itself, uniform and never rebuilt (no refinement levels).
+  bool adaptive = true;
   int remesh_every = 10;             ///< steps between rebuilds from the base mesh; 0 = only at start
   double points_across_interface = 6;
   double refine_threshold = 0.95;    ///< cells with |phi| below this are refined
@@ -120,7 +122,7 @@ struct Mesh
   /// or on its own patch of the base mesh refined around its cell only (own), which makes
   /// the cells' cost linear in their number (section 7.2).
   enum class CellMeshes { shared, own } cell_meshes = CellMeshes::shared;
-  /// Own meshes: distance kept between the cell's band (phi > -0.999) and the edge of its
+  /// Own meshes: distance kept between the cell's band (phi > -0.9) and the edge of its
   /// patch, so that the cell may move that far between two remeshes; default 8 epsilon.
   std::optional<double> own_margin;
 };

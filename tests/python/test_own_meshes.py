@@ -1,14 +1,14 @@
 """Each cell on its own mesh (numerics.mesh.cell_meshes: own, section 7.2): its phase field on
 the patch of the base mesh around it, refined around it only; the flow on the shared mesh.
-Compared with the shared mesh, restarted, run on two ranks, and stopped when a cell leaves
-its patch."""
+Compared with the shared mesh, restarted, refused on two ranks, and stopped when a cell
+leaves its patch."""
 import copy
 import subprocess
 
 import pytest
 import yaml
 
-from conftest import EXE, require_exe, run_scene
+from conftest import EXE, mpirun_prefix, require_exe, run_scene
 from test_many_cells import TWO, check
 
 OWN = {"cell_meshes": "own"}
@@ -96,17 +96,16 @@ def test_own_mesh_advection_has_no_bulk_source(tmp_path):
     assert max(abs(x - v[0]) for x in v) < 1e-10 * v[0]
 
 
-def test_own_meshes_in_a_flow_restart_bit_for_bit_and_two_ranks_agree(tmp_path):
+def test_own_meshes_in_a_flow_restart_bit_for_bit_and_refuse_several_ranks(tmp_path):
     scene = with_mesh(SHEAR, cell_meshes="own")
     scene["cells"] = [
         {"name": "upper", "shape": "circle", "center": [-0.28, 0.13], "radius": 0.25},
         {"name": "lower", "shape": "circle", "center": [0.28, -0.13], "radius": 0.25}]
     scene["interaction"] = {"In": 0.1}
     scene["output"] = {"checkpoints": {"every": 4, "keep": 3}}
-    for d in ("whole", "two", "cut"):
+    for d in ("whole", "cut"):
         (tmp_path / d).mkdir()
     whole = run_scene(scene, tmp_path / "whole")  # 10 steps, remeshes at steps 6
-    two = run_scene(scene, tmp_path / "two", ranks=2)
     cut = copy.deepcopy(scene)
     cut["numerics"]["end_time"] = 0.02
     run_scene(cut, tmp_path / "cut")
@@ -126,19 +125,20 @@ def test_own_meshes_in_a_flow_restart_bit_for_bit_and_two_ranks_agree(tmp_path):
     assert len(restarted["step"]) == len(whole["step"]) == 11
     for k in (k for k in whole if not k.startswith("wall_")):
         assert restarted[k] == whole[k], f"{k} differs after the restart"
-        if k == "inclination_deg":
-            continue  # ill-conditioned for a near circle, see test_many_cells
-        for a, b in zip(whole[k], two[k]):
-            # Measured: 1.5e-11 (lower.lambda_area).
-            assert abs(a - b) <= 1e-8 * max(abs(a), 1.0), f"{k}: 1 rank {a}, 2 ranks {b}"
     for cell in ("upper", "lower"):
         v = whole[f"{cell}.volume"]
         assert max(abs(x - v[0]) for x in v) < 1e-10 * v[0]
+    # Several ranks are refused before the first step (DOLFINx 0.5.2's sub-meshes lose the
+    # sharing of nodes across ranks: 2 ranks gave a different patch volume).
+    proc = subprocess.run(mpirun_prefix(2) + [EXE, "run", str(path)], capture_output=True,
+                          text=True, timeout=120)
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    assert "cell_meshes: own runs on one MPI rank" in proc.stderr, proc.stderr
 
 
 def test_a_cell_that_leaves_its_patch_stops_with_a_message(tmp_path):
     # Walls at +-40 carry the cell about 0.35 in 10 steps; the patch was cut at the start only.
-    scene = with_mesh(SHEAR, cell_meshes="own", remesh_every=0, own_margin=0.09)
+    scene = with_mesh(SHEAR, cell_meshes="own", remesh_every=0, own_margin=0.25)
     scene["flow"]["walls"]["bottom"]["velocity"] = [-40, 0]
     scene["flow"]["walls"]["top"]["velocity"] = [40, 0]
     require_exe()
