@@ -326,8 +326,7 @@ void Simulation::open_output(const LoopState& start)
   const auto& out = scene_.output;
   csv_ = std::make_unique<ObservablesCsv>(out.directory + "/observables.csv", scene_.domain.dim,
                                           comm_, restart_ ? start.step : -1);
-  if (out.every > 0)
-    writer_ = make_writer(start);
+  writer_ = make_writer(start); // output.every = 0 still writes the final state
   int ranks;
   MPI_Comm_size(comm_, &ranks);
   std::int64_t dofs = 0;
@@ -566,7 +565,8 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
   r.remesh_time = remesh_time;
   r.remesh_volume_change = volume_change;
   auto t0 = Clock::now();
-  if (writer_ && (at.step % scene_.output.every == 0 || at.step == last_step_))
+  const int every = scene_.output.every;
+  if (writer_ && ((every > 0 && at.step % every == 0) || at.step == last_step_))
     writer_->write(output_fields(), at.time, at.step);
   r.output_time = seconds_since(t0);
   csv_->write(r);
@@ -582,15 +582,16 @@ void Simulation::run()
   LoopState at = restart_ ? restore() : initialise();
   open_output(at);
   keep_good_state(at);
+  const int every = scene_.output.checkpoints.every; // 0: no checkpoints
   if (!restart_)
   {
     record(at, {}, 0, 0);
-    save_checkpoint(at); // so that a run killed at any later moment can be restarted
+    if (every > 0)
+      save_checkpoint(at); // so that a run killed at any later moment can be restarted
   }
 
   const auto& nu = scene_.numerics;
   const int steps = last_step_;
-  const int every = scene_.output.checkpoints.every;
   Progress progress(comm_, at.time, nu.end_time, scene_.output.progress);
   while (at.step < steps)
   {
@@ -613,7 +614,7 @@ void Simulation::run()
     record(at, timings, remesh_time, volume_change);
     progress.update(n, at.time);
     std::string checkpoint;
-    if (n == steps || (every > 0 && n % every == 0))
+    if (every > 0 && (n == steps || n % every == 0))
       checkpoint = save_checkpoint(at);
     if (n < steps && stop_signal::requested(comm_))
     {

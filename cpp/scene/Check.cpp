@@ -38,6 +38,9 @@ std::string shape_text(const Cell& c, int dim)
   case ShapeKind::expression:
     s = "expression \"" + c.expression + "\"";
     break;
+  case ShapeKind::field:
+    s = "phase field phi0 = \"" + c.expression + "\"";
+    break;
   }
   s += ", centre " + point(c.center, dim);
   if (c.rotation != 0)
@@ -159,9 +162,37 @@ long number_of_steps(const Scene& s)
   return static_cast<long>(std::ceil(s.numerics.end_time / s.numerics.dt - 1e-6));
 }
 
+std::string stabilised_accuracy_warning(const Scene& s)
+{
+  if (s.numerics.linearisation != Linearisation::stabilised)
+    return "";
+  const auto& pf = s.phase_field;
+  const double eps = s.numerics.epsilon, dt = s.numerics.dt;
+  // Measured guides (docs/scenes.md, "Linearisation"): beyond them the explicit terms make
+  // the error many times Taylor's at the same dt.
+  if (pf.model == Model::cahn_hilliard)
+  {
+    const double q = s.numerics.stabilisation * pf.mobility * dt / (eps * eps * eps);
+    if (q > 0.1)
+      return "S gamma dt / eps^3 = " + fmt(q) + " > 0.1: the stabilised Cahn-Hilliard error "
+             "is about 15 times Taylor's at this dt (it matches Taylor's at about dt/16); use "
+             "linearisation: taylor or dt <= " + fmt(dt * 0.1 / q);
+  }
+  if (pf.model == Model::helfrich_lagrange || pf.model == Model::helfrich_penalty)
+  {
+    const double q = pf.mobility * dt / (s.numbers.Be * eps * eps);
+    if (q > 0.1)
+      return "gamma dt / (Be eps^2) = " + fmt(q) + " > 0.1: the stabilised Helfrich error is "
+             "up to 20 times Taylor's at this dt (it matches Taylor's at about dt/128 for "
+             "gamma dt / (Be eps^2) = 11); use linearisation: taylor or dt <= "
+             + fmt(dt * 0.1 / q);
+  }
+  return "";
+}
+
 long number_of_outputs(const Scene& s)
 {
-  return s.output.every > 0 ? 1 + number_of_steps(s) / s.output.every : 0;
+  return s.output.every > 0 ? 1 + number_of_steps(s) / s.output.every : 1; // 0: the final state
 }
 
 SizeEstimate estimate_size(const Scene& s)
@@ -305,11 +336,21 @@ std::string check_report(const Scene& s)
   const long steps = number_of_steps(s);
   r.line("time step", fmt(s.numerics.dt) + ", end time " + fmt(s.numerics.end_time));
   r.line("steps", std::to_string(steps));
+  const std::string guide = stabilised_accuracy_warning(s);
+  if (!guide.empty())
+    r.out_ << "  warning: " << guide << "\n";
   r.line("outputs", s.output.every > 0
                         ? std::to_string(number_of_outputs(s)) + " (initial state, then every "
                               + std::to_string(s.output.every) + " steps) of "
                               + join(s.output.fields) + " to " + s.output.directory
-                        : std::string("none (output.every = 0)"));
+                        : "1 (the final state, output.every = 0) of " + join(s.output.fields)
+                              + " to " + s.output.directory);
+  const int cp = s.output.checkpoints.every;
+  r.line("checkpoints", cp > 0 ? "at the start, every " + std::to_string(cp)
+                                     + " steps and at the end (keep "
+                                     + std::to_string(s.output.checkpoints.keep) + ")"
+                               : std::string("none (output.checkpoints.every = 0; a numerical "
+                                             "failure or a stop signal still writes one)"));
 
   const SizeEstimate e = estimate_size(s);
   std::ostringstream measure;

@@ -19,6 +19,9 @@ SizeEstimate estimate_size(const Scene& s);
 long number_of_steps(const Scene& s);
 /// Field writes: the initial state plus one every output.every steps (0 if every == 0).
 long number_of_outputs(const Scene& s);
+/// "" or why the stabilised scheme is far less accurate than Taylor's at the scene's dt
+/// (measured guides per model, docs/scenes.md).
+std::string stabilised_accuracy_warning(const Scene& s);
 
 /// Multi-line human-readable summary of a validated scene.
 std::string check_report(const Scene& s);

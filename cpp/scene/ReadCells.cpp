@@ -14,7 +14,8 @@ const std::vector<std::pair<std::string, ShapeKind>> shapes = {
     {"circle", ShapeKind::circle},
     {"ellipse", ShapeKind::ellipse},
     {"cassini", ShapeKind::cassini},
-    {"expression", ShapeKind::expression}};
+    {"expression", ShapeKind::expression},
+    {"field", ShapeKind::field}};
 
 /// Size keys of each shape (the other keys are common to all shapes).
 std::vector<std::string> size_keys(ShapeKind k)
@@ -25,6 +26,7 @@ std::vector<std::string> size_keys(ShapeKind k)
   case ShapeKind::ellipse: return {"semi_axes"};
   case ShapeKind::cassini: return {"a", "b"};
   case ShapeKind::expression: return {"distance"};
+  case ShapeKind::field: return {"phi0"};
   }
   return {};
 }
@@ -162,6 +164,18 @@ void read_cells(const Section& top, Scene& s)
       if (!error.empty())
         c.value("distance").fail("cannot parse the expression \"" + cell.expression
                                  + "\": " + error + " (allowed variables: x, y, z)");
+      break;
+    }
+    case ShapeKind::field:
+    {
+      // The initial phase field itself, not through the tanh profile of a distance.
+      require(c, "phi0", cell.shape, "the initial phase field in x, y, z, in [-1, 1]");
+      cell.expression = c.value("phi0").string();
+      cell.field_epsilon = s.numerics.epsilon;
+      const std::string error = check_expression(cell.expression);
+      if (!error.empty())
+        c.value("phi0").fail("cannot parse the formula \"" + cell.expression + "\": " + error
+                             + " (allowed variables: x, y, z)");
       break;
     }
     }

@@ -33,7 +33,7 @@ struct Domain
 /// Boundary condition of the phase field: phi = -1 (2.19) or homogeneous Neumann.
 enum class PhiBoundary { dirichlet, neumann };
 
-enum class ShapeKind { circle, ellipse, cassini, expression };
+enum class ShapeKind { circle, ellipse, cassini, expression, field };
 
 /// One cell's initial shape; its phase field is tanh(-r/(sqrt2 eps)) with r the signed
 /// distance (negative inside), eq. (2.12).
@@ -46,7 +46,9 @@ struct Cell
   std::array<double, 3> semi_axes{0, 0, 0}; ///< ellipse / ellipsoid
   double rotation = 0;            ///< radians, about the z axis
   double cassini_a = 0, cassini_b = 0; ///< Cassini oval |x-f1||x-f2| = b^2, foci at +-a
-  std::string expression;         ///< signed distance in x, y, z (muparser syntax)
+  std::string expression;         ///< signed distance in x, y, z (muparser syntax); for
+                                  ///< shape field phi_0 itself
+  double field_epsilon = 0;       ///< shape field: epsilon of r = -sqrt2 eps atanh(phi_0) (2.12)
   /// Phase field the cell belongs to: cells of one group share a phase field (case (a) of
   /// Fig. 7.3); by default every cell has its own (7.3).
   std::string group;
@@ -150,14 +152,14 @@ struct Numerics
 
 struct Checkpoints
 {
-  int every = 100;                   ///< steps between checkpoints (also one at the end); 0 = only at the end
+  int every = 100;                   ///< steps between checkpoints (also at the start and the end); 0 = none
   int keep = 2;                      ///< newest checkpoints kept
 };
 
 struct Output
 {
   std::string directory = "output";
-  int every = 10;                    ///< steps between field writes; 0 = never
+  int every = 10;                    ///< steps between field writes; 0 = the final state only
   std::vector<std::string> fields{"phi"};
   bool progress = true;
   Checkpoints checkpoints;

@@ -134,7 +134,7 @@ struct SignedDistance::Expression
 SignedDistance::SignedDistance(const Cell& cell, int dim)
     : cell_(cell), dim_(dim), cos_(std::cos(cell.rotation)), sin_(std::sin(cell.rotation))
 {
-  if (cell.shape != ShapeKind::expression)
+  if (cell.shape != ShapeKind::expression && cell.shape != ShapeKind::field)
     return;
   expr_ = std::make_shared<Expression>();
   try
@@ -171,8 +171,23 @@ double SignedDistance::operator()(double x, double y, double z) const
     expr_->y = q[1];
     expr_->z = q[2];
     return expr_->parser.Eval();
+  case ShapeKind::field:
+  {
+    // The distance whose tanh profile (2.12) is phi_0: r = -sqrt2 eps atanh(phi_0).
+    const double phi = std::clamp(phi_value(x, y, z), -1 + 1e-15, 1 - 1e-15);
+    return -std::sqrt(2.0) * cell_.field_epsilon * std::atanh(phi);
+  }
   }
   return 0;
+}
+
+double SignedDistance::phi_value(double x, double y, double z) const
+{
+  const double dx = x - cell_.center[0], dy = y - cell_.center[1];
+  expr_->x = cos_ * dx + sin_ * dy;
+  expr_->y = -sin_ * dx + cos_ * dy;
+  expr_->z = dim_ == 3 ? z - cell_.center[2] : 0.0;
+  return expr_->parser.Eval();
 }
 
 std::string check_expression(const std::string& expression)
@@ -214,8 +229,24 @@ double InitialPhaseField::distance(double x, double y, double z) const
 
 double InitialPhaseField::operator()(double x, double y, double z) const
 {
-  // max_i tanh(-r_i/(sqrt2 eps)) = tanh(-min_i r_i/(sqrt2 eps)): tanh is monotone.
-  return std::tanh(-distance(x, y, z) / (std::sqrt(2.0) * epsilon_));
+  // max_i tanh(-r_i/(sqrt2 eps)) = tanh(-min_i r_i/(sqrt2 eps)): tanh is monotone. A field
+  // cell gives its phi_0 itself (exactly, not through atanh and tanh).
+  double phi = -INFINITY;
+  bool shapes = false;
+  for (const SignedDistance& d : cells_)
+    if (d.is_field())
+      phi = std::max(phi, d.phi_value(x, y, z));
+    else
+      shapes = true;
+  if (shapes)
+  {
+    double r = INFINITY;
+    for (const SignedDistance& d : cells_)
+      if (!d.is_field())
+        r = std::min(r, d(x, y, z));
+    phi = std::max(phi, std::tanh(-r / (std::sqrt(2.0) * epsilon_)));
+  }
+  return phi;
 }
 
 } // namespace cellphase::scene

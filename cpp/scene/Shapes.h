@@ -21,6 +21,9 @@ public:
   /// such scenes first, see check_expression()).
   SignedDistance(const Cell& cell, int dim);
   double operator()(double x, double y, double z = 0) const;
+  /// Shape field: its phi_0 at the point (the distance is -sqrt2 eps atanh(phi_0)).
+  double phi_value(double x, double y, double z = 0) const;
+  bool is_field() const { return cell_.shape == ShapeKind::field; }
 
 private:
   struct Expression;
