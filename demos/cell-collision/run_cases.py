@@ -114,6 +114,26 @@ def draw(cases):
     print(f"wrote {path}")
 
 
+def summary(cases):
+    """output/cell-collision/summary.md: per case the largest overlap of the two phase
+    fields (none with one), at t = 0.6 and over the run, and the volume kept."""
+    from cellphase_results import read_observables
+    lines = ["| case | overlap_max at t = 0.6 | largest overlap_max | volume change |",
+             "|---|---|---|---|"]
+    for case in cases:
+        obs = read_observables(OUT / case)
+        t = obs["time"]
+        k = min(range(len(t)), key=lambda i: abs(t[i] - 0.6))
+        v = obs["volume"]
+        if "overlap_max" in obs:
+            at, top = f"{obs['overlap_max'][k]:.3f}", f"{max(obs['overlap_max']):.3f}"
+        else:
+            at = top = "- (one phase field)"
+        lines.append(f"| ({case}) {CASES[case]} | {at} | {top} | {abs(v[-1] / v[0] - 1):.1e} |")
+    (OUT / "summary.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
@@ -135,6 +155,7 @@ def main():
     if not done:
         raise SystemExit("no case finished: nothing to draw")
     draw(done)
+    summary(done)
 
 
 if __name__ == "__main__":
