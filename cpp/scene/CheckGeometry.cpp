@@ -79,12 +79,11 @@ void check_geometry(const Section& top, const Scene& s)
   const double margin = 3 * s.numerics.epsilon;
   // With a contact angle, drops sit on the walls: cells may touch and cross them (the
   // part outside the box is cut off). The natural condition of the phase-separation models
-  // is the 90 degree contact angle (2.8): a phase may cross the boundary there too.
+  // is the contact angle of 90 degrees (2.8), which the message names.
   const Model m = s.phase_field.model;
   const bool separating = m == Model::cahn_hilliard || m == Model::allen_cahn
                           || m == Model::allen_cahn_volume;
-  const bool wetting = s.contact_angle_deg.has_value()
-                       || (separating && s.phi_boundary == PhiBoundary::neumann);
+  const bool wetting = s.contact_angle_deg.has_value();
   const std::vector<Section> cell_sections = top.list_of_sections("cells");
   auto cell_fail = [&](std::size_t i, const std::string& problem)
   { cell_sections[i].relabel(cell_label(i, s.cells[i])).fail(problem); };
@@ -98,9 +97,9 @@ void check_geometry(const Section& top, const Scene& s)
                      + (d.periodic.empty() ? ""
                                            : " (also on periodic axes: a cell may not start "
                                              "across a periodic face)")
-                     + (separating ? "; a phase may cross the boundary with boundary.phi: "
-                                     "neumann (the natural condition, a 90 degree contact "
-                                     "angle) or with boundary.contact_angle"
+                     + (separating ? "; a phase may touch and cross the boundary with "
+                                     "boundary.phi: neumann and boundary.contact_angle "
+                                     "(90 is the natural condition, grad phi . n = 0)"
                                    : ""));
   };
 

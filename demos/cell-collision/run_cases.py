@@ -110,7 +110,7 @@ def draw(cases):
     fig.suptitle("Two cells pushed together (thesis Fig. 7.3): " + "; ".join(
         f"({c}) {CASES[c]}" for c in cases), fontsize=7)
     path = OUT / "fig-7-3.png"
-    fig.savefig(path, dpi=130)
+    fig.savefig(path, dpi=90)
     print(f"wrote {path}")
 
 

@@ -51,7 +51,9 @@ Errors solve_mms(int n, bool helfrich)
                                                    {"sigma", 0.0}, {"degenerate", 0.0},
                                                    {"cos_theta", 0.0},
                                                    // the Taylor rows, unscaled
-                                                   {"row_psi", 1.0}})
+                                                   {"row_psi", 1.0},
+                                                   // phi advected (the shared mesh)
+                                                   {"own_mesh", 0.0}})
     c[k] = std::make_shared<Constant>(v);
   // No flow: the advection velocity is zero.
   auto v = std::make_shared<Function>(

@@ -16,7 +16,8 @@ SQUARE = {
     "domain": {"lower": [0, 0], "upper": [1, 1], "resolution": [24, 24]},
     "cells": [{"shape": "field", "phi0": "x*y - 0.25"}],
     "phase_field": {"model": "cahn_hilliard", "mobility": 1.0},
-    "boundary": {"phi": "neumann"},
+    # the natural condition, which lets the field cross the boundary
+    "boundary": {"phi": "neumann", "contact_angle": 90},
     "numerics": {"epsilon": 0.02, "dt": 1e-5, "end_time": 2e-5, "mesh": {"adaptive": False}},
 }
 
@@ -48,6 +49,7 @@ def test_uniform_switch_gives_the_uniform_mesh_and_phi0_formula_is_exact(tmp_pat
 
 
 def test_a_phase_crossing_the_boundary_runs_under_natural_conditions(tmp_path):
+    # contact_angle: 90 is the natural condition of boundary.phi: neumann (grad phi . n = 0).
     scene = copy.deepcopy(SQUARE)
     scene["cells"] = [{"shape": "circle", "center": [0.0, 0.5], "radius": 0.3}]
     obs = run_scene(scene, tmp_path)
@@ -55,12 +57,12 @@ def test_a_phase_crossing_the_boundary_runs_under_natural_conditions(tmp_path):
     # Half a disc of radius 0.3 inside the square (the diffuse profile adds O(eps^2)).
     assert abs(v[0] - 3.14159265 * 0.09 / 2) < 5e-3
     assert max(abs(x - v[0]) for x in v) < 1e-12
-    # With phi = -1 on the boundary it is refused, naming the ways to allow it.
-    scene["boundary"] = {"phi": "dirichlet"}
+    # Without the contact angle it is refused, and the message names the way.
+    scene["boundary"] = {"phi": "neumann"}
     proc = check(tmp_path, scene)
     assert proc.returncode == 2
     assert "extends outside the domain" in proc.stderr
-    assert "boundary.phi: neumann" in proc.stderr and "contact_angle" in proc.stderr
+    assert "boundary.contact_angle (90 is the natural condition" in proc.stderr
 
 
 def test_every_zero_writes_the_final_state_and_checkpoints_can_be_switched_off(tmp_path):
