@@ -45,16 +45,6 @@ std::vector<std::string> split_names(const std::string& text)
 /// their sub-problem's name.
 constexpr int checkpoint_format = 2;
 
-
-/// The mesh-independent measure of a cell phase field through a change of its mesh:
-/// int (1 + phi) is kept, so int phi changes by |old mesh| - |new mesh| (zero on the
-/// shared mesh, which always covers the domain).
-double mesh_volume(std::shared_ptr<const Space> V)
-{
-  auto one = std::make_shared<Function>(std::const_pointer_cast<Space>(V));
-  one->x()->set(1.0);
-  return integral_of(one);
-}
 } // namespace
 
 Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart,
@@ -456,7 +446,8 @@ double Simulation::remesh(double& volume_change)
     if (info.transfer == Transfer::keep_integral)
     {
       TransferReport report;
-      // (3.10): the cell volume is kept
+      // (3.10): the cell volume int (1 + phi) is kept, so int phi changes by
+      // |old mesh| - |new mesh| (zero on the shared mesh, which covers the domain)
       const double shift = info.mesh.empty() ? 0.0
                                              : mesh_volume(old.at(name)->function_space())
                                                    - mesh_volume(f->function_space());

@@ -23,6 +23,13 @@ double integral_of(std::shared_ptr<const Function> f)
   return compat::assemble_scalar(*form);
 }
 
+double mesh_volume(std::shared_ptr<const Space> V)
+{
+  auto one = std::make_shared<Function>(std::const_pointer_cast<Space>(V));
+  one->x()->set(1.0);
+  return integral_of(one);
+}
+
 FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, TransferReport& report)
 {
   FieldMap fields;
@@ -60,11 +67,7 @@ void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<F
       p[i] += c * s[i];
   }
   // Relative to the cell volume int (phi+1)/2 = (int phi + |Omega|)/2 on the new mesh.
-  const double omega = [&] {
-    auto one = std::make_shared<Function>(phi->function_space());
-    one->x()->set(1.0);
-    return integral_of(one);
-  }();
+  const double omega = mesh_volume(phi->function_space());
   const double cell_volume = (int_old + omega) / 2;
   report.volume_change_interpolated = std::abs(int_new - int_old) / 2 / cell_volume;
   report.volume_change_corrected = std::abs(integral_of(phi) - int_old) / 2 / cell_volume;

@@ -30,4 +30,7 @@ void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<F
 
 /// int phi dx of a P2 field.
 double integral_of(std::shared_ptr<const Function> f);
+
+/// |mesh| of a P2 space: int 1 dx.
+double mesh_volume(std::shared_ptr<const Space> V);
 } // namespace cellphase

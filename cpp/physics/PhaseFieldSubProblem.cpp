@@ -28,16 +28,6 @@ PhaseFieldSubProblem::PhaseFieldSubProblem(scene::PlanStep step, const scene::Sc
 {
 }
 
-namespace
-{
-double volume_of(std::shared_ptr<const Space> V)
-{
-  auto one = std::make_shared<Function>(std::const_pointer_cast<Space>(V));
-  one->x()->set(1.0);
-  return integral_of(one);
-}
-
-} // namespace
 
 void PhaseFieldSubProblem::declare(FieldRegistry& fields)
 {
@@ -109,8 +99,8 @@ void PhaseFieldSubProblem::attach(FieldRegistry& fields)
     if (potential)
       fields.set(field("potential"), potential_copy);
     update_copies();
-    patch_volume_ = volume_of(module_.space());
-    shared_volume_ = volume_of(fields.space("", FieldSpace::scalar_p2));
+    patch_volume_ = mesh_volume(module_.space());
+    shared_volume_ = mesh_volume(fields.space("", FieldSpace::scalar_p2));
     cut_box_ = fields.cut_box(group_.prefix).value();
     if (cell_volume_target_ >= 0) // int phi over this patch for the same int (1 + phi)
       module_.set_targets({cell_volume_target_ - patch_volume_, module_.targets().area});
