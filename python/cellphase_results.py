@@ -1,13 +1,19 @@
-"""Read the output of a cellphase run: observables.csv and fields.xdmf/fields.h5.
+"""Read the output of a cellphase run: observables.csv and the fields (fields.xdmf or
+fields.pvd, whichever output.format wrote).
 
     obs = read_observables(run_dir)          # {"time": array, "volume": array, ...}
     for time, points, cells, values in read_fields(run_dir):
         curves = zero_level_set_2d(points, cells, values["phi"])
 
-fields.xdmf is the XDMF 3 file written by DOLFINx: each mesh is a Uniform grid
-`meshK` under /Xdmf/Domain, each field a Temporal collection whose children point
-at their mesh through an xi:include xpointer. The mesh changes with remeshing, so
-points and cells are returned per output time. Needs h5py (Debian: python3-h5py).
+fields.xdmf (XDMF 3) is a temporal collection with one Uniform grid per output time: its
+Topology and Geometry (fields/mesh-<m>.h5) and every field as an Attribute
+(fields/step-<n>.h5). Needs h5py (Debian: python3-h5py). Indexes of older cellphase
+versions, one temporal collection per field pointing at mesh grids through xpointers, are
+read as well.
+fields.pvd (VTK) lists one .pvtu/.vtu per time, written with second-order Lagrange cells;
+read_fields returns them split into linear cells on the P2 nodes (4 triangles or 8
+tetrahedra per cell), ghost cells of the parallel pieces left out.
+The mesh changes with remeshing, so points and cells are returned per output time.
 """
 import csv
 import re
@@ -63,12 +69,21 @@ def _data_item(item, run_dir, h5files):
         raise ResultsError(f"{filename}: no dataset {dataset}") from None
 
 
+def fields_index(run_dir):
+    """RUN_DIR/fields.xdmf or RUN_DIR/fields.pvd, whichever exists; None if neither."""
+    for name in ("fields.xdmf", "fields.pvd"):
+        if (Path(run_dir) / name).is_file():
+            return Path(run_dir) / name
+    return None
+
+
 def _mesh_elements(grid, domain):
-    """Topology and Geometry of a field's grid, following its xpointer to a mesh grid."""
+    """Topology and Geometry of a grid: its own, or (older indexes) those of the mesh grid
+    its xpointer names."""
     include = grid.find(XINCLUDE)
     if include is None:  # mesh written inline in the grid itself
         return grid.find("Topology"), grid.find("Geometry")
-    # DOLFINx writes xpointer(/Xdmf/Domain/Grid[@Name='meshK']/*[self::Topology or ...]).
+    # xpointer(/Xdmf/Domain/Grid[@Name='meshK']/*[self::Topology or ...]).
     match = re.search(r"Grid\[@Name='([^']+)'\]", include.get("xpointer", ""))
     if not match:
         raise ResultsError(f"unsupported xpointer {include.get('xpointer')!r}")
@@ -78,24 +93,52 @@ def _mesh_elements(grid, domain):
     return mesh.find("Topology"), mesh.find("Geometry")
 
 
-def _parse_xdmf(run_dir):
-    path = Path(run_dir) / "fields.xdmf"
+def _parse_xml(path, what):
     if not path.is_file():
-        raise ResultsError(f"{path}: no such file (the run wrote no fields)")
+        raise ResultsError(f"{path}: no such file ({what})")
     try:
-        domain = ET.parse(path).getroot().find("Domain")
+        return ET.parse(path).getroot()
     except ET.ParseError as e:
         raise ResultsError(f"{path}: not valid XML (is the run still writing it?): {e}") from None
+
+
+def _parse_xdmf(run_dir):
+    path = Path(run_dir) / "fields.xdmf"
+    domain = _parse_xml(path, "the run wrote no fields").find("Domain")
     if domain is None:
         raise ResultsError(f"{path}: no /Xdmf/Domain element")
     return domain
 
 
+def _xdmf_grids(domain):
+    """The grids of every temporal collection, each with its time."""
+    for collection in domain.findall("Grid"):
+        if collection.get("CollectionType") == "Temporal":
+            for grid in collection.findall("Grid"):
+                yield float(grid.find("Time").get("Value")), grid
+
+
 def describe_fields(run_dir):
-    """(field names, dimension) of RUN_DIR/fields.xdmf; dimension 2 for triangle meshes,
-    3 for tetrahedra, None if unknown."""
+    """(field names, dimension) of the run's fields (XDMF or VTK); dimension 2 for
+    triangle meshes, 3 for tetrahedra, None if unknown."""
+    index = fields_index(run_dir)
+    if index is not None and index.suffix == ".pvd":
+        datasets = _pvd_datasets(run_dir)
+        if not datasets:
+            return [], None
+        piece = _vtu_pieces(datasets[0][1])[0]
+        root = _parse_xml(piece, "a piece of the VTK output")
+        names = [a.get("Name") for a in root.find(".//PointData").findall("DataArray")
+                 if not a.get("Name").startswith("vtk")]
+        types = np.fromstring(root.find(".//Cells/DataArray[@Name='types']").text, sep=" ")
+        dim = None if len(types) == 0 else (3 if types[0] in (10, 24, 71) else 2)
+        return names, dim
     domain = _parse_xdmf(run_dir)
-    names = [g.get("Name") for g in domain.findall("Grid") if g.get("CollectionType") == "Temporal"]
+    names = []
+    for _, grid in _xdmf_grids(domain):
+        for attribute in grid.findall("Attribute"):
+            if attribute.get("Name") not in names:
+                names.append(attribute.get("Name"))
     topology = domain.find(".//Topology")
     dims = {"Triangle": 2, "Tetrahedron": 3}
     return names, None if topology is None else dims.get(topology.get("TopologyType"))
@@ -107,19 +150,22 @@ def read_fields(run_dir, fields=None):
     points is N x gdim (2 for XY, 3 for XYZ), cells M x 3 (triangles) or M x 4
     (tetrahedra). `fields` restricts which fields are read (default: all).
     """
+    index = fields_index(run_dir)
+    if index is not None and index.suffix == ".pvd":
+        yield from _read_vtk(run_dir, fields)
+        return
     domain = _parse_xdmf(run_dir)
-    # Group the children of all temporal collections by (time, mesh): fields written
-    # at the same step share the mesh of that step.
+    # Group the attributes by (time, mesh): one grid per time, or (older indexes) one grid
+    # per field and time sharing the mesh of that step.
     steps = {}
-    for collection in domain.findall("Grid"):
-        name = collection.get("Name")
-        if collection.get("CollectionType") != "Temporal" or (fields and name not in fields):
-            continue
-        for grid in collection.findall("Grid"):
-            time = float(grid.find("Time").get("Value"))
-            topology, geometry = _mesh_elements(grid, domain)
+    for time, grid in _xdmf_grids(domain):
+        topology, geometry = _mesh_elements(grid, domain)
+        for attribute in grid.findall("Attribute"):
+            name = attribute.get("Name")
+            if fields and name not in fields:
+                continue
             entry = steps.setdefault((time, topology), (geometry, {}))
-            entry[1][name] = grid.find("Attribute/DataItem")
+            entry[1][name] = attribute.find("DataItem")
 
     h5files = {}
     try:
@@ -135,6 +181,87 @@ def read_fields(run_dir, fields=None):
     finally:
         for f in h5files.values():
             f.close()
+
+
+# VTK cell types of DOLFINx's writer and the linear cells on their nodes (VTK node order:
+# vertices, then the edges (0,1), (1,2), (2,0) / (0,1), (1,2), (0,2), (0,3), (1,3), (2,3)).
+_SPLIT = {
+    5: [[0, 1, 2]], 10: [[0, 1, 2, 3]],
+    22: [[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]],                # quadratic triangle
+    69: [[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]],                # Lagrange triangle, order 2
+    24: [[0, 4, 6, 7], [4, 1, 5, 8], [6, 5, 2, 9], [7, 8, 9, 3],     # quadratic tetrahedron
+         [6, 8, 4, 5], [6, 8, 5, 9], [6, 8, 9, 7], [6, 8, 7, 4]],
+}
+_SPLIT[71] = _SPLIT[24]                                               # Lagrange tetrahedron, order 2
+_NODES = {5: 3, 10: 4, 22: 6, 69: 6, 24: 10, 71: 10}
+
+
+def _pvd_datasets(run_dir):
+    """[(time, path of its .vtu or .pvtu)] of RUN_DIR/fields.pvd."""
+    root = _parse_xml(Path(run_dir) / "fields.pvd", "the run wrote no VTK fields")
+    return [(float(d.get("timestep")), Path(run_dir) / d.get("file"))
+            for d in root.iter("DataSet")]
+
+
+def _vtu_pieces(path):
+    if path.suffix == ".vtu":
+        return [path]
+    root = _parse_xml(path, "a time of the VTK output")
+    return [path.parent / p.get("Source") for p in root.iter("Piece")]
+
+
+def _ascii_array(node, dtype=float):
+    if node.get("format", "ascii") != "ascii":
+        raise ResultsError(f"VTK DataArray {node.get('Name')!r}: format {node.get('format')!r} "
+                           "is not read (DOLFINx writes ascii)")
+    return np.array((node.text or "").split(), dtype=dtype)
+
+
+def _read_vtu(path, fields):
+    """points (N x 3), linear cells (M x k) and point data of one .vtu piece."""
+    root = _parse_xml(path, "a piece of the VTK output")
+    piece = root.find("UnstructuredGrid/Piece")
+    points = _ascii_array(piece.find("Points/DataArray")).reshape(-1, 3)
+    cells = piece.find("Cells")
+    connectivity = _ascii_array(cells.find("DataArray[@Name='connectivity']"), np.int64)
+    offsets = _ascii_array(cells.find("DataArray[@Name='offsets']"), np.int64)
+    types = _ascii_array(cells.find("DataArray[@Name='types']"), np.int64)
+    ghost = piece.find("CellData/DataArray[@Name='vtkGhostType']")
+    owned = np.ones(len(types), bool) if ghost is None else (_ascii_array(ghost, np.int64) & 1) == 0
+    if len(set(types)) > 1 or (len(types) and types[0] not in _SPLIT):
+        raise ResultsError(f"{path}: cell types {sorted(set(types))} are not read")
+    linear = np.empty((0, 3), np.int64)
+    if len(types):
+        nodes = connectivity.reshape(-1, _NODES[types[0]])
+        assert np.array_equal(offsets, np.arange(1, len(types) + 1) * nodes.shape[1])
+        nodes = nodes[owned]
+        linear = np.concatenate([nodes[:, s] for s in _SPLIT[types[0]]])
+    values = {}
+    for array in piece.find("PointData").findall("DataArray"):
+        name = array.get("Name")
+        if name.startswith("vtk") or (fields and name not in fields):
+            continue
+        data = _ascii_array(array).reshape(len(points), -1)
+        values[name] = data[:, 0] if data.shape[1] == 1 else data
+    return points, linear, values
+
+
+def _read_vtk(run_dir, fields):
+    for time, path in sorted(_pvd_datasets(run_dir), key=lambda d: d[0]):
+        points, cells, values = [], [], {}
+        offset = 0
+        for piece in _vtu_pieces(path):
+            p, c, v = _read_vtu(piece, fields)
+            points.append(p)
+            cells.append(c + offset)
+            offset += len(p)
+            for name, data in v.items():
+                values.setdefault(name, []).append(data)
+        points = np.concatenate(points)
+        cells = np.concatenate(cells)
+        if cells.shape[1] == 3 and not np.any(points[:, 2]):
+            points = points[:, :2]  # a 2D mesh, as the XDMF reader returns it
+        yield time, points, cells, {k: np.concatenate(v) for k, v in values.items()}
 
 
 def zero_level_set_2d(points, cells, values, level=0.0):

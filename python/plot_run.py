@@ -7,7 +7,7 @@ Writes PNG files into RUN_DIR/plots (or --out):
   timings.png      wall time of each step, stacked by part (assembly, solve, ...)
   cells.png        runs with several cells: each cell's volume change and centre path,
                    the largest overlap of two cells and the interaction energy
-  level_sets.png   2D runs with fields.xdmf: the zero level set of phi at every
+  level_sets.png   2D runs with fields (XDMF or VTK): the zero level set of phi at every
                    output time, coloured by time (level_sets_NAME.png for other fields)
 """
 import argparse
@@ -19,8 +19,8 @@ matplotlib.use("Agg")  # files only: works without a display
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cellphase_results import (ResultsError, describe_fields, read_fields, read_observables,
-                               zero_level_set_2d)
+from cellphase_results import (ResultsError, describe_fields, fields_index, read_fields,
+                               read_observables, zero_level_set_2d)
 
 PROG = "plot_run.py"
 
@@ -120,7 +120,7 @@ def plot_level_sets(run_dir, field, title, path):
         curves.append(zero_level_set_2d(points[:, :2], cells, values[field]))
         bounds.append((points[:, :2].min(axis=0), points[:, :2].max(axis=0)))
     if not times:
-        raise ResultsError(f"{run_dir / 'fields.xdmf'}: field {field} has no output times")
+        raise ResultsError(f"{fields_index(run_dir)}: field {field} has no output times")
     fig, ax = plt.subplots(figsize=(6.5, 5.5), constrained_layout=True)
     # Guard a single output time: a zero-width colour range cannot be drawn.
     norm = plt.Normalize(min(times), max(times) if max(times) > min(times) else min(times) + 1)
@@ -142,7 +142,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(
         prog=PROG, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("run_dir", metavar="RUN_DIR", type=Path,
-                        help="output directory of a run (holds observables.csv, fields.xdmf)")
+                        help="output directory of a run (holds observables.csv, fields.xdmf or fields.pvd)")
     parser.add_argument("--out", metavar="DIR", type=Path,
                         help="where to write the plots (default: RUN_DIR/plots)")
     parser.add_argument("--fields", metavar="NAME", nargs="+", default=["phi"],
@@ -158,8 +158,9 @@ def main(argv=None):
         return fail(f"{run_dir}: no such directory")
     try:
         obs = read_observables(run_dir)
-        # Reads the XDMF only (not the HDF5 data): field names, and 2D or 3D for the labels.
-        has_fields = (run_dir / "fields.xdmf").is_file()
+        # Reads the index only (not the data): field names, and 2D or 3D for the labels.
+        index = fields_index(run_dir)
+        has_fields = index is not None
         names, dim = describe_fields(run_dir) if has_fields else ([], None)
     except ResultsError as e:
         return fail(e)
@@ -171,7 +172,7 @@ def main(argv=None):
                         else [n for n in names if n.startswith(f + "_")] or [f])]
     missing = [f for f in fields if f not in names]
     if has_fields and missing:
-        return fail(f"no field {', '.join(missing)} in {run_dir / 'fields.xdmf'} "
+        return fail(f"no field {', '.join(missing)} in {index} "
                     f"(it has: {', '.join(names) or 'none'})")
 
     out = args.out or run_dir / "plots"
@@ -186,7 +187,7 @@ def main(argv=None):
         print(out / "cells.png")
 
     if not has_fields:
-        print(f"note: {run_dir / 'fields.xdmf'} not found: plotted the observables only")
+        print(f"note: {run_dir / 'fields.xdmf'} not found (nor fields.pvd): plotted the observables only")
     elif dim != 2:
         print("note: level sets are plotted for 2D runs only")
     else:

@@ -334,11 +334,11 @@ void Simulation::open_output(const LoopState& start)
       ranks, ranks > 1 ? "s" : "", threads, threads > 1 ? "s" : "");
 }
 
-std::unique_ptr<FieldWriter> Simulation::make_writer(const LoopState& start) const
+std::unique_ptr<FieldOutput> Simulation::make_writer(const LoopState& start) const
 {
   // A restart continues the index of the interrupted run, cut back to the checkpoint.
-  return std::make_unique<FieldWriter>(
-      comm_, scene_.output.directory,
+  return make_field_output(
+      scene_.output.format, comm_, scene_.output.directory,
       restart_ ? std::optional<double>(start.time) : std::nullopt);
 }
 
@@ -626,7 +626,10 @@ void Simulation::run()
   int factorisations = 0;
   for (const auto& sub : split_)
     factorisations += sub->factorisations();
+  const std::string fields_at =
+      writer_ ? ", fields in " + std::filesystem::path(writer_->index_path()).filename().string()
+              : "";
   log("  %d factorisations; observables in %s/observables.csv%s\n", factorisations,
-      scene_.output.directory.c_str(), writer_ ? ", fields in fields.xdmf" : "");
+      scene_.output.directory.c_str(), fields_at.c_str());
 }
 } // namespace cellphase

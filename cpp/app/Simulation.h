@@ -6,7 +6,7 @@
 #include "app/CheckpointStore.h"
 #include "core/FieldRegistry.h"
 #include "core/SubProblem.h"
-#include "io/FieldWriter.h"
+#include "io/FieldOutput.h"
 #include "io/ObservablesCsv.h"
 #include "mesh/AdaptiveMesh.h"
 #include "mesh/OwnMesh.h"
@@ -72,7 +72,7 @@ private:
   /// Every sub-problem on the mesh of the fields now in the registry.
   void attach_all();
   void open_output(const LoopState& start);
-  std::unique_ptr<FieldWriter> make_writer(const LoopState& start) const;
+  std::unique_ptr<FieldOutput> make_writer(const LoopState& start) const;
   /// The fields the scene's output lists, by label.
   FieldMap output_fields() const;
   double remesh(double& volume_change);
@@ -102,7 +102,7 @@ private:
   std::vector<SubProblem*> attach_order_;
   CheckpointStore checkpoints_;
   std::unique_ptr<ObservablesCsv> csv_;
-  std::unique_ptr<FieldWriter> writer_;
+  std::unique_ptr<FieldOutput> writer_;
   int last_step_ = 0;
   const SubProblem* solving_ = nullptr; ///< the sub-problem being stepped
   GoodState good_;

@@ -345,6 +345,9 @@ std::string check_report(const Scene& s)
                               + join(s.output.fields) + " to " + s.output.directory
                         : "1 (the final state, output.every = 0) of " + join(s.output.fields)
                               + " to " + s.output.directory);
+  r.line("field format", s.output.format == OutputFormat::vtk
+                             ? "vtk (fields.pvd, one .vtu per time, P2 kept exact)"
+                             : "xdmf (fields.xdmf, one grid per time, P2 as P1 on the refined mesh)");
   const int cp = s.output.checkpoints.every;
   r.line("checkpoints", cp > 0 ? "at the start, every " + std::to_string(cp)
                                      + " steps and at the end (keep "

@@ -9,11 +9,13 @@ using namespace yaml;
 void read_output(const Section& top, Scene& s)
 {
   const Section o = top.section("output");
-  o.allow_only({"directory", "every", "fields", "progress", "checkpoints"});
+  o.allow_only({"directory", "format", "every", "fields", "progress", "checkpoints"});
   Output& out = s.output;
   out.directory = o.string("directory", out.directory);
   if (out.directory.empty())
     o.fail("directory", "is empty; give a directory name such as output");
+  out.format = o.choice("format", out.format,
+                        {{"xdmf", OutputFormat::xdmf}, {"vtk", OutputFormat::vtk}});
   out.every = o.integer("every", out.every, non_negative());
   out.progress = o.boolean("progress", out.progress);
   const Section c = o.section("checkpoints");

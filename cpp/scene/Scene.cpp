@@ -79,6 +79,11 @@ const char* to_string(WallType w)
   return "unknown";
 }
 
+const char* to_string(OutputFormat f)
+{
+  return f == OutputFormat::vtk ? "vtk" : "xdmf";
+}
+
 bool couples_to_flow(Model m) { return m == Model::cahn_hilliard || is_helfrich(m); }
 
 double flow_reynolds(const Scene& s)

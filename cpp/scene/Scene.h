@@ -156,9 +156,17 @@ struct Checkpoints
   int keep = 2;                      ///< newest checkpoints kept
 };
 
+/// How the fields are written (docs/scenes.md, "Field output").
+enum class OutputFormat
+{
+  xdmf, ///< fields.xdmf: one grid per time, P2 fields as P1 on the once refined mesh
+  vtk   ///< fields.pvd: one .vtu per time with second-order Lagrange cells (P2 exact)
+};
+
 struct Output
 {
   std::string directory = "output";
+  OutputFormat format = OutputFormat::xdmf;
   int every = 10;                    ///< steps between field writes; 0 = the final state only
   std::vector<std::string> fields{"phi"};
   bool progress = true;
@@ -256,6 +264,7 @@ const char* to_string(Linearisation l);
 std::vector<std::string> model_fields(Model m);
 bool is_helfrich(Model m);
 const char* to_string(WallType w);
+const char* to_string(OutputFormat f);
 /// Models the flow can be coupled to (they have the advection term and a chemical
 /// potential for the interface force): cahn_hilliard (2.8), the Helfrich models
 /// (Navier-Stokes-Helfrich: H^-1 (3.59)-(3.64), L2 with multipliers/penalties (3.81)-(3.85)).
