@@ -15,6 +15,8 @@ packages=(
   gmsh                                 # meshes/*.geo -> XDMF at build time
   python3-pytest python3-yaml python3-numpy python3-matplotlib python3-h5py  # tests, plots
   libopenblas0-pthread                 # optimised BLAS for MUMPS (see benchmarks/)
+  paraview python3-paraview xvfb xauth # tests: the output opened by pvpython, rendered off-screen
+  python3-meshio                       # tests: the output read by meshio
 )
 missing=()
 for p in "${packages[@]}"; do

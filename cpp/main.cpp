@@ -40,8 +40,10 @@ A run writes into output.directory:
                     centre of mass, circularity, dofs, wall time per part of the step;
                     with several cells also per-cell columns (<cell>.volume, ...),
                     interaction_energy and overlap_max
-  fields.xdmf/.h5   the fields every output.every steps (open in ParaView); a restarted
-                    run writes fields.restart-<step>.xdmf
+  fields.xdmf       the fields every output.every steps, one grid per time holding every
+                    field (open in ParaView; data in fields/, where each step-<n>.xdmf
+                    opens on its own); output.format: vtk writes fields.pvd instead
+                    (second-order cells); a restart continues the index
   checkpoints/      checkpoint-<step>.cpk every output.checkpoints.every steps and at the
                     end (the newest output.checkpoints.keep are kept)
 Ctrl-C, SIGTERM or SIGUSR1 (a queue's time limit) stops the run after the current step

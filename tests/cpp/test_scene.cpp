@@ -613,7 +613,8 @@ TEST(SceneErrors, UnknownKeys)
   EXPECT_ERROR(std::string(minimal_scene) + "units: {lenght: 1}\n",
                "units.lenght: unknown key; allowed keys in units: length");
   EXPECT_ERROR(std::string(minimal_scene) + "numbers: {Pe: 1}\n", "numbers.Pe: unknown key");
-  EXPECT_ERROR(std::string(minimal_scene) + "output: {format: vtk}\n", "output.format: unknown key");
+  EXPECT_ERROR(std::string(minimal_scene) + "output: {formats: vtk}\n",
+               "output.formats: unknown key; allowed keys in output: directory, format, every");
   EXPECT_ERROR(std::string(minimal_scene) + "boundary: {mu: neumann}\n",
                "boundary.mu: unknown key; allowed keys in boundary: phi");
   EXPECT_ERROR(minimal_with("  resolution: [16, 16]", "  resolution: [16, 16]\n  periodicity: [x]"),
@@ -798,6 +799,8 @@ TEST(SceneErrors, FieldsAndSections)
   EXPECT_ERROR(std::string(minimal_scene) + "output: {fields: [phi, w]}\n",
                "output.fields[1]: field \"w\" is not solved for by model cahn_hilliard; allowed: phi, mu");
   EXPECT_ERROR(std::string(minimal_scene) + "output: {fields: [phi, phi]}\n", "is listed twice");
+  EXPECT_ERROR(std::string(minimal_scene) + "output: {format: vtu}\n",
+               "output.format: unknown value \"vtu\"");
   EXPECT_ERROR(std::string(minimal_scene) + "numbers: {Ca: 1}\nunits: {length: 1}\n",
                "units: give either numbers");
   EXPECT_ERROR(minimal_with("numerics:\n  epsilon: 0.05", "numerics:\n  epsilon: 0.05\n  dt: 0.1"),

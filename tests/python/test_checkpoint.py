@@ -122,11 +122,13 @@ def test_sigterm_stops_with_checkpoint_and_restart_equals_uninterrupted(tmp_path
     assert_same_observables(uninterrupted, rows(run_dir))  # bit for bit
 
 
-def test_sigkill_leaves_readable_output_and_a_valid_checkpoint(tmp_path, uninterrupted):
+@pytest.mark.parametrize("output_format", ["xdmf", "vtk"])
+def test_sigkill_leaves_readable_output_and_a_valid_checkpoint(tmp_path, uninterrupted,
+                                                               output_format):
     require_exe()
     run_dir = tmp_path / "run"
     # Fields at every step: the kill is likely to hit a write.
-    scene_path = write_scene(vesicle_scene(every=1), tmp_path, run_dir)
+    scene_path = write_scene(vesicle_scene(every=1, format=output_format), tmp_path, run_dir)
     code, _, _ = start_and_stop(scene_path, run_dir, signal.SIGKILL, after_rows=9)
     assert code == -signal.SIGKILL
     observed = cellphase_results.read_observables(run_dir)
