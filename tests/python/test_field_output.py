@@ -55,15 +55,18 @@ def sphere_scene(output_format):
     }
 
 
-RUNS = {"flow-xdmf": (flow_scene, "xdmf"), "flow-vtk": (flow_scene, "vtk"),
-        "sphere-xdmf": (sphere_scene, "xdmf"), "sphere-vtk": (sphere_scene, "vtk")}
+# name: (scene, format, MPI ranks); under mpirun each rank writes its part of every file
+# (XDMF: one HDF5 file written in parallel; VTK: one .vtu piece per rank).
+RUNS = {"flow-xdmf": (flow_scene, "xdmf", 1), "flow-vtk": (flow_scene, "vtk", 1),
+        "flow-xdmf-mpi2": (flow_scene, "xdmf", 2), "flow-vtk-mpi2": (flow_scene, "vtk", 2),
+        "sphere-xdmf": (sphere_scene, "xdmf", 1), "sphere-vtk": (sphere_scene, "vtk", 1)}
 
 
 @pytest.fixture(scope="module", params=sorted(RUNS))
 def run(request, tmp_path_factory):
-    make, fmt = RUNS[request.param]
+    make, fmt, ranks = RUNS[request.param]
     work = tmp_path_factory.mktemp(request.param)
-    obs = run_scene(make(fmt), work)
+    obs = run_scene(make(fmt), work, ranks=ranks)
     return {"name": request.param, "dir": work / "out", "obs": obs, "format": fmt}
 
 
@@ -119,6 +122,12 @@ def test_paraview_opens_the_run_as_users_do(run, tmp_path):
             assert lo == pytest.approx(own_lo, abs=1e-12) and hi == pytest.approx(own_hi, abs=1e-12), name
         if run["format"] == "xdmf":
             assert at["points"] == len(points) and at["cells"] == len(cells)
+        # Plot Over Line through the centre crosses the cell: phi from about -1 to 1 (within
+        # the nodal range on P1 cells; P2 cells may overshoot it between nodes).
+        lo, hi = at["line_phi"]
+        assert lo < -0.9 and hi > 0.9, at["line_phi"]
+        if run["format"] == "xdmf":
+            assert ranges(values["phi"])[0] - 1e-12 <= lo, at["line_phi"]
         # Contour phi = 0 against the run's own surface column.
         size = at["contour"]["Length" if dim == 2 else "Area"]
         surface = observable_at(run, "surface", time)
