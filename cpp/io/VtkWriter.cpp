@@ -64,16 +64,12 @@ VtkWriter::VtkWriter(MPI_Comm comm, const std::string& directory,
     return;
   fs::create_directories(directory_ + "/fields");
   index_ = std::make_unique<pugi::xml_document>();
-  if (resume_after_time && fs::exists(index_path()) && index_->load_file(index_path().c_str())
+  // A restart continues the index, cut back to the checkpoint's time.
+  if (xml_index::load_to_resume(*index_, index_path(), resume_after_time.has_value())
       && collection_of(*index_))
   {
-    // A restart continues the index, cut back to the checkpoint's time.
-    std::vector<pugi::xml_node> late;
-    for (auto d : collection_of(*index_).children("DataSet"))
-      if (d.attribute("timestep").as_double() > *resume_after_time)
-        late.push_back(d);
-    for (auto d : late)
-      collection_of(*index_).remove_child(d);
+    xml_index::remove_after(collection_of(*index_), "DataSet", *resume_after_time,
+                            [](pugi::xml_node d) { return d.attribute("timestep").as_double(); });
     return;
   }
   new_index(*index_);

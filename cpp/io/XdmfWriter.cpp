@@ -63,17 +63,6 @@ pugi::xml_node series_of(pugi::xml_document& index)
   series.append_attribute("CollectionType") = "Temporal";
   return series;
 }
-
-/// Drop the times after `time`.
-void prune(pugi::xml_node series, double time)
-{
-  std::vector<pugi::xml_node> late;
-  for (auto g : series.children("Grid"))
-    if (g.child("Time").attribute("Value").as_double() > time)
-      late.push_back(g);
-  for (auto g : late)
-    series.remove_child(g);
-}
 } // namespace
 
 XdmfWriter::XdmfWriter(MPI_Comm comm, const std::string& directory,
@@ -86,11 +75,12 @@ XdmfWriter::XdmfWriter(MPI_Comm comm, const std::string& directory,
   index_ = std::make_unique<pugi::xml_document>();
   // A restart continues the index of the interrupted run, cut back to the checkpoint; an
   // index of another layout (an older cellphase) is started afresh.
-  if (resume_after_time && fs::exists(index_path()) && index_->load_file(index_path().c_str())
+  if (xml_index::load_to_resume(*index_, index_path(), resume_after_time.has_value())
       && index_->child("Xdmf").child("Domain").find_child_by_attribute("Grid", "Name",
                                                                        series_name))
   {
-    prune(series_of(*index_), *resume_after_time);
+    xml_index::remove_after(series_of(*index_), "Grid", *resume_after_time, [](pugi::xml_node g)
+                            { return g.child("Time").attribute("Value").as_double(); });
     return;
   }
   new_xdmf(*index_);

@@ -27,6 +27,14 @@ pugi::xml_document load(const std::string& path)
   return doc;
 }
 
+bool load_to_resume(pugi::xml_document& doc, const std::string& path, bool resume)
+{
+  if (resume && std::filesystem::exists(path) && doc.load_file(path.c_str()))
+    return true;
+  doc.reset();
+  return false;
+}
+
 void save_atomically(const pugi::xml_document& doc, const std::string& path)
 {
   const std::string tmp = path + ".tmp";

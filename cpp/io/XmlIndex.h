@@ -4,6 +4,7 @@
 #pragma once
 #include <pugixml.hpp>
 #include <string>
+#include <vector>
 
 namespace cellphase::xml_index
 {
@@ -13,6 +14,20 @@ std::string numbered(const char* stem, int step);
 std::string time_text(double t);
 /// The XML file at `path`; throws naming the path if it cannot be parsed.
 pugi::xml_document load(const std::string& path);
+/// With `resume` (a restart), load the index at `path` into `doc` and return true if it
+/// exists and parses; otherwise leave `doc` empty and return false.
+bool load_to_resume(pugi::xml_document& doc, const std::string& path, bool resume);
+/// Remove the children `name` of `parent` whose `time_of` is beyond `time`.
+template <typename TimeOf>
+void remove_after(pugi::xml_node parent, const char* name, double time, TimeOf time_of)
+{
+  std::vector<pugi::xml_node> late;
+  for (auto child : parent.children(name))
+    if (time_of(child) > time)
+      late.push_back(child);
+  for (auto child : late)
+    parent.remove_child(child);
+}
 /// Write `doc` to `path` through `path`.tmp and a rename.
 void save_atomically(const pugi::xml_document& doc, const std::string& path);
 } // namespace cellphase::xml_index
