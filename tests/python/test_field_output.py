@@ -74,12 +74,29 @@ def own_frames(run):
     return list(cellphase_results.read_fields(run["dir"]))
 
 
-def paraview(index, png_stem):
-    if shutil.which("pvpython") is None or shutil.which("xvfb-run") is None:
-        pytest.skip("pvpython or xvfb-run missing (tests/run.sh installs them)")
-    proc = subprocess.run(["xvfb-run", "-a", "pvpython", str(PROBE), str(index), str(png_stem)],
+@pytest.fixture(scope="module")
+def display():
+    """An X display for ParaView's rendering: Xvfb, which reports the display number it
+    took once it accepts connections (-displayfd), so nothing races its start."""
+    if shutil.which("pvpython") is None or shutil.which("Xvfb") is None:
+        pytest.skip("pvpython or Xvfb missing (tests/run.sh installs them)")
+    read_end, write_end = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "800x600x24",
+                               "-nolisten", "tcp"], pass_fds=[write_end],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    os.close(write_end)
+    with os.fdopen(read_end) as f:
+        number = f.readline().strip()
+    assert number, "Xvfb did not start"
+    yield f":{number}"
+    server.terminate()
+    server.wait(timeout=30)
+
+
+def paraview(index, png_stem, display):
+    proc = subprocess.run(["pvpython", str(PROBE), str(index), str(png_stem)],
                           capture_output=True, text=True, timeout=600,
-                          env={**os.environ, "PYTHONPATH": ""})
+                          env={**os.environ, "PYTHONPATH": "", "DISPLAY": display})
     lines = [l for l in proc.stdout.splitlines() if l.startswith("PROBE ")]
     assert proc.returncode == 0 and lines, proc.stdout + proc.stderr
     assert "Invalid xpointer" not in proc.stderr and "error" not in proc.stderr.lower(), proc.stderr
@@ -105,10 +122,10 @@ def observable_at(run, name, time):
     return run["obs"][name][k]
 
 
-def test_paraview_opens_the_run_as_users_do(run, tmp_path):
+def test_paraview_opens_the_run_as_users_do(run, tmp_path, display):
     index = cellphase_results.fields_index(run["dir"])
     assert index.name == ("fields.pvd" if run["format"] == "vtk" else "fields.xdmf")
-    seen = paraview(index, tmp_path / "contour")
+    seen = paraview(index, tmp_path / "contour", display)
     frames = own_frames(run)
     # The times of every output, the reader ParaView picks for the file.
     assert seen["reader"] == ("PVDReader" if run["format"] == "vtk" else "Xdmf3ReaderS")
