@@ -1,4 +1,5 @@
 #include "app/Simulation.h"
+#include "app/TestHooks.h"
 #include "app/StopSignal.h"
 #include "app/SubProblems.h"
 #include "io/FieldSnapshot.h"
@@ -197,6 +198,7 @@ std::string Simulation::save_checkpoint(const LoopState& at)
   data.set("format_version", checkpoint_format);
   data.set("step", at.step);
   data.set("time", at.time);
+  data.set("remeshed_for_next_step", at.remeshed ? 1 : 0);
   data.set("dt", scene_.numerics.dt);
   data.set("mesh.levels", adaptive_.levels());
   for (int level = 0; level < adaptive_.levels(); ++level)
@@ -301,7 +303,10 @@ Simulation::LoopState Simulation::restore()
     for (const auto& name : fields_.names())
       if (fields_.info(name).checkpointed && fields_.info(name).space == FieldSpace::other)
         restore_field(data, "field." + name, *fields_.get(name));
-    LoopState at{int(data.scalar("step")), data.scalar("time")};
+    // (Absent from checkpoints written before it was recorded: those were never remeshed.)
+    LoopState at{int(data.scalar("step")), data.scalar("time"),
+                 data.arrays.count("remeshed_for_next_step")
+                     && data.scalar("remeshed_for_next_step") != 0};
     log("cellphase: restarting from %s (step %d, t = %g)\n", path.c_str(), at.step, at.time);
     return at;
   }
@@ -588,8 +593,11 @@ void Simulation::run()
   {
     const int n = at.step + 1;
     double remesh_time = 0, volume_change = 0;
-    if (nu.mesh.remesh_every > 0 && (n - 1) > 0 && (n - 1) % nu.mesh.remesh_every == 0)
+    const bool remesh_due =
+        nu.mesh.remesh_every > 0 && (n - 1) > 0 && (n - 1) % nu.mesh.remesh_every == 0;
+    if (remesh_due && !at.remeshed)
       remesh_time = remesh(volume_change);
+    at.remeshed = remesh_due;
     keep_good_state(at);
     const double dt = std::min(nu.dt, nu.end_time - at.time);
     StepTimings timings;
@@ -602,6 +610,7 @@ void Simulation::run()
       fail({n, at.time + dt}, solving_ ? solving_->description() : "time loop", e.what());
     }
     at = {n, n == steps ? nu.end_time : at.time + dt};
+    test_hooks::inject_nan_after_step(fields_, n);
     record(at, timings, remesh_time, volume_change);
     progress.update(n, at.time);
     std::string checkpoint;

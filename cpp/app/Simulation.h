@@ -56,6 +56,9 @@ private:
   {
     int step = 0;
     double time = 0;
+    /// The mesh and fields are already those of the remesh that begins step + 1 (the
+    /// state a failed step falls back to): a restart from it does not remesh again.
+    bool remeshed = false;
   };
   /// Copies of the field values at the start of the current step.
   struct GoodState

@@ -46,6 +46,11 @@ void repair_pvtu(const std::string& path)
   xml_index::save_atomically(doc, path);
 }
 
+double time_of(pugi::xml_node dataset)
+{
+  return dataset.attribute("timestep").as_double();
+}
+
 void new_index(pugi::xml_document& doc)
 {
   doc.reset();
@@ -68,8 +73,8 @@ VtkWriter::VtkWriter(MPI_Comm comm, const std::string& directory,
   if (xml_index::load_to_resume(*index_, index_path(), resume_after_time.has_value())
       && collection_of(*index_))
   {
-    xml_index::remove_after(collection_of(*index_), "DataSet", *resume_after_time,
-                            [](pugi::xml_node d) { return d.attribute("timestep").as_double(); });
+    xml_index::remove_children(collection_of(*index_), "DataSet", [&](pugi::xml_node d)
+                               { return time_of(d) > *resume_after_time; });
     return;
   }
   new_index(*index_);
@@ -125,6 +130,9 @@ void VtkWriter::write(const FieldMap& fields, double time, int step)
   const std::string dataset_file = dataset.attribute("file").value();
   if (dataset_file.ends_with(".pvtu"))
     repair_pvtu(directory_ + "/fields/" + dataset_file);
+  // A failed run writes its last good state again: it replaces the entry of that time.
+  xml_index::remove_children(collection_of(*index_), "DataSet",
+                             [&](pugi::xml_node d) { return time_of(d) == time; });
   auto entry = collection_of(*index_).append_child("DataSet");
   entry.append_attribute("timestep") = xml_index::time_text(time).c_str();
   entry.append_attribute("part") = "0";

@@ -50,6 +50,11 @@ pugi::xml_node new_xdmf(pugi::xml_document& doc)
   return xdmf.append_child("Domain");
 }
 
+double time_of(pugi::xml_node grid)
+{
+  return grid.child("Time").attribute("Value").as_double();
+}
+
 /// The temporal collection of the index, created if missing.
 pugi::xml_node series_of(pugi::xml_document& index)
 {
@@ -79,8 +84,8 @@ XdmfWriter::XdmfWriter(MPI_Comm comm, const std::string& directory,
       && index_->child("Xdmf").child("Domain").find_child_by_attribute("Grid", "Name",
                                                                        series_name))
   {
-    xml_index::remove_after(series_of(*index_), "Grid", *resume_after_time, [](pugi::xml_node g)
-                            { return g.child("Time").attribute("Value").as_double(); });
+    xml_index::remove_children(series_of(*index_), "Grid", [&](pugi::xml_node g)
+                               { return time_of(g) > *resume_after_time; });
     return;
   }
   new_xdmf(*index_);
@@ -169,6 +174,10 @@ void XdmfWriter::write(const FieldMap& fields, double time, int step)
   // no Time element (meshio.read refuses one in a single grid): the index holds the time.
   xml_index::save_atomically(standalone, file);
 
+  // A failed run writes its last good state again, on the mesh the state was kept on:
+  // it replaces the entry of that time.
+  xml_index::remove_children(series_of(*index_), "Grid",
+                             [&](pugi::xml_node g) { return time_of(g) == time; });
   auto entry = series_of(*index_).append_copy(grid);
   entry.insert_child_before("Time", entry.child("Attribute")).append_attribute("Value") =
       xml_index::time_text(time).c_str();

@@ -17,15 +17,15 @@ pugi::xml_document load(const std::string& path);
 /// With `resume` (a restart), load the index at `path` into `doc` and return true if it
 /// exists and parses; otherwise leave `doc` empty and return false.
 bool load_to_resume(pugi::xml_document& doc, const std::string& path, bool resume);
-/// Remove the children `name` of `parent` whose `time_of` is beyond `time`.
-template <typename TimeOf>
-void remove_after(pugi::xml_node parent, const char* name, double time, TimeOf time_of)
+/// Remove the children `name` of `parent` for which `drop(child)` holds.
+template <typename Predicate>
+void remove_children(pugi::xml_node parent, const char* name, Predicate drop)
 {
-  std::vector<pugi::xml_node> late;
+  std::vector<pugi::xml_node> doomed;
   for (auto child : parent.children(name))
-    if (time_of(child) > time)
-      late.push_back(child);
-  for (auto child : late)
+    if (drop(child))
+      doomed.push_back(child);
+  for (auto child : doomed)
     parent.remove_child(child);
 }
 /// Write `doc` to `path` through `path`.tmp and a rename.
