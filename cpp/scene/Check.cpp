@@ -192,7 +192,11 @@ std::string stabilised_accuracy_warning(const Scene& s)
 
 long number_of_outputs(const Scene& s)
 {
-  return s.output.every > 0 ? 1 + number_of_steps(s) / s.output.every : 1; // 0: the final state
+  if (s.output.every <= 0)
+    return 1; // the final state only
+  // The initial state, every `every` steps, and the end when it falls between.
+  const long steps = number_of_steps(s);
+  return 1 + steps / s.output.every + (steps % s.output.every != 0 ? 1 : 0);
 }
 
 SizeEstimate estimate_size(const Scene& s)
@@ -340,8 +344,8 @@ std::string check_report(const Scene& s)
   if (!guide.empty())
     r.out_ << "  warning: " << guide << "\n";
   r.line("outputs", s.output.every > 0
-                        ? std::to_string(number_of_outputs(s)) + " (initial state, then every "
-                              + std::to_string(s.output.every) + " steps) of "
+                        ? std::to_string(number_of_outputs(s)) + " (initial state, every "
+                              + std::to_string(s.output.every) + " steps and the end) of "
                               + join(s.output.fields) + " to " + s.output.directory
                         : "1 (the final state, output.every = 0) of " + join(s.output.fields)
                               + " to " + s.output.directory);

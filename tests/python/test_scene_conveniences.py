@@ -114,3 +114,21 @@ def test_check_warns_about_the_stabilised_scheme_far_outside_its_guide(tmp_path)
     assert "warning: S gamma dt / eps^3 = 1.6 > 0.1" in proc.stdout
     scene["numerics"]["dt"] = 5e-6  # S gamma dt / eps^3 = 0.08: within the guide
     assert "warning" not in check(tmp_path, scene).stdout
+
+
+@pytest.mark.parametrize("steps, every, expected", [(2, 10, 2), (20, 10, 3), (25, 10, 4), (2, 0, 1)])
+def test_check_counts_the_outputs_the_run_writes(tmp_path, steps, every, expected):
+    """check's count is what the run writes: the initial state, every `every` steps and
+    the end (once, also when it falls on a multiple); with every = 0 the end alone."""
+    scene = copy.deepcopy(SQUARE)
+    scene["numerics"]["end_time"] = steps * 1e-5
+    scene["output"] = {"every": every}
+    proc = check(tmp_path, scene)
+    assert proc.returncode == 0, proc.stderr
+    assert re.search(rf"outputs\s+{expected} ", proc.stdout), proc.stdout
+    if steps <= 2:
+        run_scene(scene, tmp_path)
+        import sys
+        sys.path.insert(0, str(__import__("pathlib").Path(__file__).parents[2] / "python"))
+        from cellphase_results import read_fields
+        assert len(list(read_fields(tmp_path / "out"))) == expected
