@@ -93,3 +93,33 @@ def test_restart_with_another_mesh_is_refused_before_step_one(tmp_path):
         assert proc.stderr.startswith("error: ") and message in proc.stderr, proc.stderr
         assert "Traceback" not in proc.stderr
         assert (run_dir / "observables.csv").read_text() == before  # nothing was run
+
+
+def sphere_in_shear(end_time):
+    """3D: an ellipsoid in a Stokes shear flow between moving walls, remeshed every 2 steps,
+    a checkpoint every 3 steps."""
+    return {
+        "domain": {"lower": [-1.2] * 3, "upper": [1.2] * 3, "resolution": [4, 4, 4]},
+        "boundary": {"phi": "neumann"},
+        "cells": [{"shape": "ellipse", "center": [0, 0, 0], "semi_axes": [0.5, 0.4, 0.4]}],
+        "phase_field": {"model": "helfrich_hm1", "mobility": 1e-3, "penalty_area": 100},
+        "numbers": {"Be": 10.0},
+        "flow": {"equations": "stokes",
+                 "walls": {"bottom": {"type": "moving", "velocity": [-1, 0, 0]},
+                           "top": {"type": "moving", "velocity": [1, 0, 0]}}},
+        "numerics": {"epsilon": 0.2, "dt": 1 / 64, "end_time": end_time,
+                     "mesh": {"remesh_every": 2, "points_across_interface": 2.5}},
+        "output": {"every": 0, "progress": False, "checkpoints": {"every": 3, "keep": 2}},
+    }
+
+
+def test_3d_flow_run_with_remeshing_restarts_bit_for_bit(tmp_path):
+    """Issue 18, item 4: a 3D run with flow and remeshes (before steps 3 and 5), continued
+    from its checkpoint at step 3, equals the run in one go bit for bit."""
+    from test_checkpoint import restart_from_shorter_run
+    a, b, stdout = restart_from_shorter_run(sphere_in_shear(6 / 64), sphere_in_shear(3 / 64),
+                                            tmp_path)
+    assert "(step 3," in stdout and len(a) == 7
+    assert len({r["dofs"] for r in a}) > 1  # the mesh changed at the remeshes
+    assert float(a[-1]["flow_dofs"]) > 0
+    assert_same_observables(a, b)
