@@ -1,4 +1,5 @@
 #include "physics/PhaseFieldSubProblem.h"
+#include "physics/SharpInterface.h"
 #include "mesh/FieldTransfer.h"
 #include "mesh/OwnMesh.h"
 #include "physics/FormTable.h"
@@ -233,6 +234,24 @@ void PhaseFieldSubProblem::observe(Observation& row)
     r.phi_min = std::min(r.phi_min, v.phi_min);
     r.phi_max = std::max(r.phi_max, v.phi_max);
   }
+  // The sharp-interface limits (docs/scenes.md): summed over the phase fields.
+  const bool bending = scene::is_helfrich(scene_.phase_field.model);
+  const SharpMeasures sharp = sharp_measures(
+      *module_.fields().at("phi"), bending ? module_.fields().at("mu").get() : nullptr,
+      scene_.phase_field.spontaneous_curvature, scene_.numerics.epsilon);
+  std::vector<std::pair<std::string, double>> limits{{"volume_sharp", sharp.inside},
+                                                     {"surface_sharp", sharp.surface}};
+  if (bending)
+    limits.push_back({"bending_energy_sharp", sharp.bending / scene_.numbers.Be}); // (3.1)
+  for (const auto& [name, value] : limits)
+  {
+    auto it = std::find_if(row.extra.begin(), row.extra.end(),
+                           [&](const auto& e) { return e.first == name; });
+    if (it == row.extra.end())
+      row.extra.push_back({name, value});
+    else
+      it->second += value;
+  }
   std::array<double, 3> velocity{0, 0, 0};
   if (weight_form_)
   {
@@ -253,6 +272,8 @@ void PhaseFieldSubProblem::observe(Observation& row)
                       {g + "center_x", v.center[0]}, {g + "center_y", v.center[1]},
                       {g + "center_z", v.center[2]}, {g + "circularity", v.circularity},
                       {g + "lambda_area", module_.multipliers()[1]}});
+    for (const auto& [name, value] : limits)
+      row.extra.push_back({g + name, value});
   }
 }
 

@@ -8,6 +8,7 @@
 #include "scene/YamlRead.h"
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 namespace cellphase::scene
@@ -364,6 +365,22 @@ std::string check_report(const Scene& s)
   measure.precision(3);
   measure << e.interface_measure;
   r.line(dim == 2 ? "interface length" : "interface area", std::string("~") + measure.str());
+  // The reduced area 4 pi A / L^2 (2D) or volume 6 sqrt(pi) V / A^(3/2) (3D) of each cell's
+  // sharp initial shape: 1 for a circle (sphere), the shape parameter of the vesicle papers.
+  std::ostringstream reduced;
+  reduced.precision(3);
+  for (std::size_t i = 0; i < s.cells.size(); ++i)
+  {
+    if (s.cells[i].shape == ShapeKind::field)
+      continue; // a given phase field, not a distance: no sharp shape to measure
+    const SignedDistance shape(s.cells[i], dim);
+    const double inside = enclosed_measure(s.domain, shape), size = interface_measure(s.domain, shape);
+    const double nu = dim == 2 ? 4 * std::numbers::pi * inside / (size * size)
+                               : 6 * std::sqrt(std::numbers::pi) * inside / std::pow(size, 1.5);
+    reduced << (reduced.tellp() > 0 ? ", " : "") << nu << " (" << s.cells[i].name << ")";
+  }
+  if (reduced.tellp() > 0)
+    r.line(dim == 2 ? "reduced area" : "reduced volume", reduced.str());
   r.line("mesh cells", std::string("~") + rough(e.base_cells + e.refined_cells) + " (" + rough(e.base_cells)
                            + " base + ~" + rough(e.refined_cells) + " in the refined band)");
   r.line("degrees of freedom",

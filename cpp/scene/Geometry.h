@@ -32,6 +32,10 @@ int check_grid_points(int dim);
 /// samples of r near zero (coarea formula). An estimate, not a measurement.
 double interface_measure(const Domain& d, const SignedDistance& r);
 
+/// Area (2D) or volume (3D) inside a cell's zero level set (r < 0) within the domain,
+/// from the same samples. An estimate, not a measurement.
+double enclosed_measure(const Domain& d, const SignedDistance& r);
+
 /// "(0.5, -1)" or "(0.5, -1, 2)".
 std::string point_text(const Point& p, int dim);
 

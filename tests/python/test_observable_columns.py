@@ -21,7 +21,7 @@ def test_old_columns_first_then_flow_columns_and_inclination_of_a_rotated_ellips
     c = run_scene(scene, tmp_path)
     with open(tmp_path / "out" / "observables.csv") as f:
         header = f.readline().strip()
-    assert header == OLD + "," + NEW + "," + MEMBRANE
+    assert header == OLD + "," + NEW + "," + MEMBRANE + ",volume_sharp,surface_sharp"
     for key in ("kinetic_energy", "cell_velocity_x", "cell_velocity_y", "rise_velocity"):
         assert all(v == 0 for v in c[key])
     assert c["total_energy_kinetic"] == c["total_energy"]
