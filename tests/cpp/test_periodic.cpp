@@ -347,7 +347,7 @@ TEST(Periodic, MixedSpaceSubspacesArePeriodic)
 
 TEST(Periodic, HelmholtzPeriodicInXYZOnTetrahedra)
 {
-  const std::vector<int> ns3{4, 8};
+  const std::vector<int> ns3{4, 8, 16};
   std::vector<double> errors;
   for (int n : ns3)
   {
@@ -372,9 +372,13 @@ TEST(Periodic, HelmholtzPeriodicInXYZOnTetrahedra)
       EXPECT_LT(j.jump, 1e-12);
     }
   }
-  const double rate = std::log2(errors[0] / errors[1]);
-  std::printf("  3D n = 8: |e| = %.3e (rate %.2f)\n", errors[1], rate);
-  EXPECT_GT(rate, 2.5); // P2 on 4 and 8 cells per side: still pre-asymptotic
+  // P2 in L2: the rate 3 of docs/architecture.md, held on the pair 8/16 to 0.2 below (as in
+  // 2D); the pair 4/8 is pre-asymptotic (2.5 or better).
+  const double coarse = std::log2(errors[0] / errors[1]), fine = std::log2(errors[1] / errors[2]);
+  std::printf("  3D n = 8: |e| = %.3e (rate %.2f), n = 16: |e| = %.3e (rate %.2f)\n", errors[1],
+              coarse, errors[2], fine);
+  EXPECT_GT(coarse, 2.5);
+  EXPECT_GT(fine, 2.8);
 }
 
 namespace
