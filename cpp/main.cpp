@@ -8,6 +8,7 @@
 #include <dolfinx/common/log.h>
 #include <cstdio>
 #include <cstdlib>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -252,6 +253,9 @@ int main(int argc, char** argv)
   dolfinx::init_logging(argc, argv); // DOLFINx logs warnings only
   PetscInitializeNoArguments();
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr); // errors become messages, not aborts
+  // Output piped into a reader that stops early (cellphase run ... | head) must not abort
+  // the run through PETSc's signal handler: a closed pipe only drops the log lines.
+  std::signal(SIGPIPE, SIG_IGN);
   const int status = run(scene, !args.restart_dir.empty());
   PetscFinalize();
   MPI_Finalize();
