@@ -17,7 +17,9 @@ p_ex = cos(pi * X) * cos(pi * Y)                              # int p_ex = 0
 phi_ex = 0.8 * sin(2 * pi * X) * cos(pi * Y)
 mu_ex = cos(pi * X) * sin(2 * pi * Y)
 
-rho_e, eta_e = rho_of(phi_ex), eta_of(phi_ex)                 # |phi_ex| < 1: no clipping
+# (2.56) written here (not the production rho_of, eta_of): linear in phi between the phases
+rho_e = rho1 * (1 + phi_ex) / 2 + rho0 * (1 - phi_ex) / 2
+eta_e = eta1 * (1 + phi_ex) / 2 + eta0 * (1 - phi_ex) / 2
 J_e = -(rho1 - rho0) / 2 * mobility * grad(mu_ex)
 # Strong form of 5.3 (1) with the terms of 2.8 at the steady state (d_t v = 0):
 f_src = (convection * Re * (grad(v_ex) * (rho_e * v_ex + J_e))
