@@ -44,7 +44,8 @@ A run writes into output.directory:
   fields.xdmf       the fields every output.every steps, one grid per time holding every
                     field (open in ParaView; data in fields/, where each step-<n>.xdmf
                     opens on its own); output.format: vtk writes fields.pvd instead
-                    (second-order cells); a restart continues the index
+                    (second-order cells); a restart continues the index; with own
+                    cell meshes also cell.<name>.xdmf, each cell on its mesh
   checkpoints/      checkpoint-<step>.cpk every output.checkpoints.every steps and at the
                     end (the newest output.checkpoints.keep are kept)
 Ctrl-C, SIGTERM or SIGUSR1 (a queue's time limit) stops the run after the current step

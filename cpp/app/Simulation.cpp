@@ -321,7 +321,7 @@ void Simulation::open_output(const LoopState& start)
   const auto& out = scene_.output;
   csv_ = std::make_unique<ObservablesCsv>(out.directory + "/observables.csv", scene_.domain.dim,
                                           comm_, restart_ ? start.step : -1);
-  writer_ = make_writer(start); // output.every = 0 still writes the final state
+  make_writers(start); // output.every = 0 still writes the final state
   int ranks;
   MPI_Comm_size(comm_, &ranks);
   std::int64_t dofs = 0;
@@ -339,33 +339,42 @@ void Simulation::open_output(const LoopState& start)
       ranks, ranks > 1 ? "s" : "", threads, threads > 1 ? "s" : "");
 }
 
-std::unique_ptr<FieldOutput> Simulation::make_writer(const LoopState& start) const
+void Simulation::make_writers(const LoopState& start)
 {
-  // A restart continues the index of the interrupted run, cut back to the checkpoint.
-  return make_field_output(
-      scene_.output.format, comm_, scene_.output.directory,
-      restart_ ? std::optional<double>(start.time) : std::nullopt);
+  // A restart continues each index of the interrupted run, cut back to the checkpoint.
+  const auto resume = restart_ ? std::optional<double>(start.time) : std::nullopt;
+  for (const auto& key : fields_.mesh_keys())
+    writers_[key] = make_field_output(scene_.output.format, comm_, scene_.output.directory,
+                                      resume, key.empty() ? "fields" : key);
 }
 
-FieldMap Simulation::output_fields() const
+void Simulation::write_fields(double time, int step)
 {
-  // "phi" is the field labelled phi, or with several cells every phi_<group>.
-  FieldMap out;
-  auto add = [&](const std::string& label)
-  {
-    const std::string name = fields_.by_label(label);
-    if (name.empty() || !fields_.info(name).mesh.empty())
-      return; // fields on a cell's own mesh are written as their copies on the shared mesh
-    if (auto f = fields_.find(name))
-      out[label] = f;
-  };
+  for (const auto& [key, writer] : writers_)
+    writer->write(output_fields(key), time, step);
+}
+
+FieldMap Simulation::output_fields(const std::string& key) const
+{
+  // "phi" is the field labelled phi, or with several cells every phi_<group>. On a cell's
+  // own mesh the state own_phi_<group> is written as phi_<group>.
+  std::vector<std::string> labels;
   for (const auto& label : scene_.output.fields)
   {
     if (!fields_.by_label(label).empty())
-      add(label);
+      labels.push_back(label);
     else
       for (const auto& g : scene::cell_groups(scene_))
-        add(label + g.label_suffix);
+        labels.push_back(label + g.label_suffix);
+  }
+  FieldMap out;
+  for (const auto& label : labels)
+  {
+    const std::string name = fields_.by_label(key.empty() ? label : "own_" + label);
+    if (name.empty() || fields_.info(name).mesh != key)
+      continue;
+    if (auto f = fields_.find(name))
+      out[label] = f;
   }
   return out;
 }
@@ -504,10 +513,10 @@ void Simulation::fail(const LoopState& at, const std::string& module, const std:
   try
   {
     saved = save_checkpoint(good_.at);
-    if (!writer_)
-      writer_ = make_writer(good_.at);
-    writer_->write(output_fields(), good_.at.time, good_.at.step);
-    saved += " and " + writer_->index_path();
+    if (writers_.empty())
+      make_writers(good_.at);
+    write_fields(good_.at.time, good_.at.step);
+    saved += " and " + writers_.at("")->index_path();
   }
   catch (const std::exception& e)
   {
@@ -562,8 +571,8 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
   r.remesh_volume_change = volume_change;
   auto t0 = Clock::now();
   const int every = scene_.output.every;
-  if (writer_ && ((every > 0 && at.step % every == 0) || at.step == last_step_))
-    writer_->write(output_fields(), at.time, at.step);
+  if ((every > 0 && at.step % every == 0) || at.step == last_step_)
+    write_fields(at.time, at.step);
   r.output_time = seconds_since(t0);
   csv_->write(r);
 }
@@ -635,9 +644,10 @@ void Simulation::run()
   int factorisations = 0;
   for (const auto& sub : split_)
     factorisations += sub->factorisations();
-  const std::string fields_at =
-      writer_ ? ", fields in " + std::filesystem::path(writer_->index_path()).filename().string()
-              : "";
+  std::string fields_at;
+  for (const auto& [key, writer] : writers_)
+    fields_at += (fields_at.empty() ? ", fields in " : ", ")
+                 + std::filesystem::path(writer->index_path()).filename().string();
   log("  %d factorisations; observables in %s/observables.csv%s\n", factorisations,
       scene_.output.directory.c_str(), fields_at.c_str());
 }

@@ -75,9 +75,13 @@ private:
   /// Every sub-problem on the mesh of the fields now in the registry.
   void attach_all();
   void open_output(const LoopState& start);
-  std::unique_ptr<FieldOutput> make_writer(const LoopState& start) const;
+  /// One field output per mesh: "" the shared mesh (fields.xdmf), a cell's own mesh
+  /// cell.<group> (cell.<group>.xdmf).
+  void make_writers(const LoopState& start);
+  void write_fields(double time, int step);
   /// The fields the scene's output lists, by label.
-  FieldMap output_fields() const;
+  /// The fields of output.fields that live on mesh `key`, by their output names.
+  FieldMap output_fields(const std::string& key) const;
   double remesh(double& volume_change);
   /// The new meshes at a remesh: each refined around the zero level sets of its fields.
   std::map<std::string, std::shared_ptr<Mesh>> rebuild_meshes();
@@ -105,7 +109,7 @@ private:
   std::vector<SubProblem*> attach_order_;
   CheckpointStore checkpoints_;
   std::unique_ptr<ObservablesCsv> csv_;
-  std::unique_ptr<FieldOutput> writer_;
+  std::map<std::string, std::unique_ptr<FieldOutput>> writers_; ///< by mesh key
   int last_step_ = 0;
   const SubProblem* solving_ = nullptr; ///< the sub-problem being stepped
   GoodState good_;

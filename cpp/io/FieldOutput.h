@@ -23,9 +23,11 @@ public:
   virtual std::string index_path() const = 0;
 };
 
-/// The writer of `format` into `directory`. With resume_after_time (a restart) the
-/// existing index is kept up to that time and continued.
+/// The writer of `format` into `directory`: the index `stem`.xdmf (or .pvd) with its data
+/// in `stem`/. With resume_after_time (a restart) the existing index is kept up to that
+/// time and continued.
 std::unique_ptr<FieldOutput> make_field_output(scene::OutputFormat format, MPI_Comm comm,
                                                const std::string& directory,
-                                               std::optional<double> resume_after_time);
+                                               std::optional<double> resume_after_time,
+                                               const std::string& stem = "fields");
 } // namespace cellphase

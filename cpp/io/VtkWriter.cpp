@@ -62,12 +62,12 @@ void new_index(pugi::xml_document& doc)
 } // namespace
 
 VtkWriter::VtkWriter(MPI_Comm comm, const std::string& directory,
-                     std::optional<double> resume_after_time)
-    : comm_(comm), directory_(directory)
+                       std::optional<double> resume_after_time, const std::string& stem)
+    : comm_(comm), directory_(directory), stem_(stem)
 {
   if (rank_of(comm_) != 0)
     return;
-  fs::create_directories(directory_ + "/fields");
+  fs::create_directories(directory_ + "/" + stem_);
   index_ = std::make_unique<pugi::xml_document>();
   // A restart continues the index, cut back to the checkpoint's time.
   if (xml_index::load_to_resume(*index_, index_path(), resume_after_time.has_value())
@@ -114,7 +114,7 @@ void VtkWriter::write(const FieldMap& fields, double time, int step)
   }
   std::vector<std::reference_wrapper<const Function>> refs(values.begin(), values.end());
   const std::string stem = xml_index::numbered("step", step);
-  const std::string own_pvd = directory_ + "/fields/" + stem + ".pvd";
+  const std::string own_pvd = directory_ + "/" + stem_ + "/" + stem + ".pvd";
   {
     io::VTKFile out(comm_, own_pvd, "w");
     out.write(refs, time);
@@ -129,14 +129,14 @@ void VtkWriter::write(const FieldMap& fields, double time, int step)
     throw std::runtime_error("'" + own_pvd + "' holds no DataSet");
   const std::string dataset_file = dataset.attribute("file").value();
   if (dataset_file.ends_with(".pvtu"))
-    repair_pvtu(directory_ + "/fields/" + dataset_file);
+    repair_pvtu(directory_ + "/" + stem_ + "/" + dataset_file);
   // A failed run writes its last good state again: it replaces the entry of that time.
   xml_index::remove_children(collection_of(*index_), "DataSet",
                              [&](pugi::xml_node d) { return time_of(d) == time; });
   auto entry = collection_of(*index_).append_child("DataSet");
   entry.append_attribute("timestep") = xml_index::time_text(time).c_str();
   entry.append_attribute("part") = "0";
-  entry.append_attribute("file") = ("fields/" + dataset_file).c_str();
+  entry.append_attribute("file") = (stem_ + "/" + dataset_file).c_str();
   xml_index::save_atomically(*index_, index_path());
 }
 } // namespace cellphase

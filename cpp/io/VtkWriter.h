@@ -20,15 +20,18 @@ namespace cellphase
 class VtkWriter : public FieldOutput
 {
 public:
+  /// The index `stem`.pvd in `directory`, the data files in `stem`/.
   VtkWriter(MPI_Comm comm, const std::string& directory,
-            std::optional<double> resume_after_time = std::nullopt);
+            std::optional<double> resume_after_time = std::nullopt,
+            const std::string& stem = "fields");
   ~VtkWriter() override;
   void write(const FieldMap& fields, double time, int step) override;
-  std::string index_path() const override { return directory_ + "/fields.pvd"; }
+  std::string index_path() const override { return directory_ + "/" + stem_ + ".pvd"; }
 
 private:
   MPI_Comm comm_;
   std::string directory_;
+  std::string stem_; ///< of the index and of the data folder
   std::unique_ptr<pugi::xml_document> index_; ///< rank 0 only
   std::shared_ptr<const Mesh> mesh_;         ///< mesh of the spaces below
   std::shared_ptr<Space> p2_, p2_vector_;

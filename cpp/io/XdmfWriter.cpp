@@ -71,12 +71,12 @@ pugi::xml_node series_of(pugi::xml_document& index)
 } // namespace
 
 XdmfWriter::XdmfWriter(MPI_Comm comm, const std::string& directory,
-                       std::optional<double> resume_after_time)
-    : comm_(comm), directory_(directory)
+                       std::optional<double> resume_after_time, const std::string& stem)
+    : comm_(comm), directory_(directory), stem_(stem)
 {
   if (rank_of(comm_) != 0)
     return;
-  fs::create_directories(directory_ + "/fields");
+  fs::create_directories(directory_ + "/" + stem_);
   index_ = std::make_unique<pugi::xml_document>();
   // A restart continues the index of the interrupted run, cut back to the checkpoint; an
   // index of another layout (an older cellphase) is started afresh.
@@ -112,7 +112,7 @@ void XdmfWriter::use_mesh(std::shared_ptr<const Mesh> mesh, int step)
                                  basix::element::lagrange_variant::equispaced, false);
   p1_ = std::make_shared<Space>(fem::create_functionspace(fine, e, 1));
   p1_vector_ = std::make_shared<Space>(fem::create_functionspace(fine, e, tdim));
-  mesh_file_ = directory_ + "/fields/" + name + ".xdmf";
+  mesh_file_ = directory_ + "/" + stem_ + "/" + name + ".xdmf";
   {
     io::XDMFFile out(comm_, mesh_file_, "w");
     out.write_mesh(*fine);
@@ -133,7 +133,7 @@ void XdmfWriter::write(const FieldMap& fields, double time, int step)
   last_time_ = time;
 
   const std::string stem = numbered("step", step);
-  const std::string file = directory_ + "/fields/" + stem + ".xdmf";
+  const std::string file = directory_ + "/" + stem_ + "/" + stem + ".xdmf";
   {
     io::XDMFFile out(comm_, file, "w");
     for (auto it = fields.begin(); it != fields.end(); ++it)
@@ -181,7 +181,7 @@ void XdmfWriter::write(const FieldMap& fields, double time, int step)
   auto entry = series_of(*index_).append_copy(grid);
   entry.insert_child_before("Time", entry.child("Attribute")).append_attribute("Value") =
       xml_index::time_text(time).c_str();
-  prefix_data_items(entry, "fields/");
+  prefix_data_items(entry, stem_ + "/");
   xml_index::save_atomically(*index_, index_path());
 }
 } // namespace cellphase

@@ -23,11 +23,13 @@ namespace cellphase
 class XdmfWriter : public FieldOutput
 {
 public:
+  /// The index `stem`.xdmf in `directory`, the data files in `stem`/.
   XdmfWriter(MPI_Comm comm, const std::string& directory,
-             std::optional<double> resume_after_time = std::nullopt);
+             std::optional<double> resume_after_time = std::nullopt,
+             const std::string& stem = "fields");
   ~XdmfWriter() override;
   void write(const FieldMap& fields, double time, int step) override;
-  std::string index_path() const override { return directory_ + "/fields.xdmf"; }
+  std::string index_path() const override { return directory_ + "/" + stem_ + ".xdmf"; }
 
 private:
   /// Point the output at `mesh`: reuse the written mesh if it is the same, else refine
@@ -36,6 +38,7 @@ private:
 
   MPI_Comm comm_;
   std::string directory_;
+  std::string stem_; ///< of the index and of the data folder
   std::unique_ptr<pugi::xml_document> index_; ///< rank 0 only
   std::shared_ptr<const Mesh> source_mesh_;  ///< mesh of the last written fields
   std::optional<std::uint64_t> source_fingerprint_;

@@ -4,7 +4,9 @@ times, and at the first and the last time the point and cell counts, every array
 the length (2D) or area (3D) of the Contour phi = 0, phi sampled by Plot Over Line along
 the x axis through the domain's centre, and a PNG of that contour.
 
-    pvpython paraview_probe.py INDEX PNG_STEM
+    pvpython paraview_probe.py INDEX PNG_STEM [FIELD]
+
+FIELD is the phase field to contour and sample (default phi).
 """
 import json
 import sys
@@ -15,6 +17,7 @@ from paraview.simple import (Contour, GetActiveViewOrCreate, Hide, IntegrateVari
 from vtk.util.numpy_support import vtk_to_numpy
 
 index, png_stem = sys.argv[1], sys.argv[2]
+field = sys.argv[3] if len(sys.argv) > 3 else "phi"
 source = OpenDataFile(index)
 times = list(source.TimestepValues)
 report = {"reader": source.GetXMLName(), "times": times, "at": []}
@@ -23,7 +26,7 @@ for k, t in ((0, times[0]), (len(times) - 1, times[-1])):
     info = source.GetDataInformation()
     arrays = {name: list(source.PointData[name].GetRange(-1)) for name in source.PointData.keys()
               if not name.startswith("vtk")}
-    contour = Contour(Input=source, ContourBy=["POINTS", "phi"], Isosurfaces=[0.0])
+    contour = Contour(Input=source, ContourBy=["POINTS", field], Isosurfaces=[0.0])
     measure = IntegrateVariables(Input=contour)
     measure.UpdatePipeline(t)
     cell_data = servermanager.Fetch(measure).GetCellData()
@@ -36,7 +39,7 @@ for k, t in ((0, times[0]), (len(times) - 1, times[-1])):
     line.Resolution = 400
     line.UpdatePipeline(t)
     sampled = servermanager.Fetch(line).GetPointData()
-    phi_line = vtk_to_numpy(sampled.GetArray("phi"))[vtk_to_numpy(sampled.GetArray("vtkValidPointMask")) == 1]
+    phi_line = vtk_to_numpy(sampled.GetArray(field))[vtk_to_numpy(sampled.GetArray("vtkValidPointMask")) == 1]
     view = GetActiveViewOrCreate("RenderView")
     view.ViewTime = t
     view.ViewSize = [400, 300]

@@ -42,6 +42,20 @@ def flow_scene(output_format):
     }
 
 
+def own_meshes_scene(output_format):
+    """Two cells, each on its own mesh: one index per mesh (fields, cell.left, cell.right)."""
+    return {
+        "domain": {"lower": [0, 0], "upper": [4, 2], "resolution": [16, 8]},
+        "cells": [{"name": "left", "shape": "ellipse", "center": [1.2, 1], "semi_axes": [0.5, 0.35]},
+                  {"name": "right", "shape": "circle", "center": [2.8, 1], "radius": 0.45}],
+        "phase_field": {"model": "helfrich_hm1", "mobility": 1e-3, "penalty_area": 100},
+        "numerics": {"epsilon": 0.08, "dt": 1e-3, "end_time": 4e-3,
+                     "mesh": {"remesh_every": 2, "points_across_interface": 3,
+                              "cell_meshes": "own"}},
+        "output": {"every": 2, "fields": ["phi", "mu"], "format": output_format},
+    }
+
+
 def sphere_scene(output_format):
     """An ellipsoid relaxing under the H^-1 flow in 3D, remeshed every 2 steps."""
     return {
@@ -60,6 +74,29 @@ def sphere_scene(output_format):
 RUNS = {"flow-xdmf": (flow_scene, "xdmf", 1), "flow-vtk": (flow_scene, "vtk", 1),
         "flow-xdmf-mpi2": (flow_scene, "xdmf", 2), "flow-vtk-mpi2": (flow_scene, "vtk", 2),
         "sphere-xdmf": (sphere_scene, "xdmf", 1), "sphere-vtk": (sphere_scene, "vtk", 1)}
+
+
+@pytest.mark.parametrize("output_format", ["xdmf", "vtk"])
+def test_each_cell_mesh_has_its_own_index(tmp_path, display, output_format):
+    """With own meshes every mesh gets an index of its own (one grid per time, no blocks
+    whose arrays differ, which is what broke colouring in a single multi-grid file): the
+    shared mesh's fields.* with phi_left, phi_right, and cell.<name>.* with that cell's
+    fields on its own, finer-cut mesh. ParaView opens each; a cell's contour has the
+    length of its <name>.surface column."""
+    obs = run_scene(own_meshes_scene(output_format), tmp_path)
+    out = tmp_path / "out"
+    ext = "pvd" if output_format == "vtk" else "xdmf"
+    assert (out / f"fields.{ext}").is_file()
+    for name in ("left", "right"):
+        index = out / f"cell.{name}.{ext}"
+        assert index.is_file() and (out / f"cell.{name}").is_dir()
+        seen = paraview(index, tmp_path / name, display, field=f"phi_{name}")
+        assert sorted(seen["at"][-1]["arrays"]) == [f"mu_{name}", f"phi_{name}"]
+        length = seen["at"][-1]["contour"].get("Length")
+        surface = obs[f"{name}.surface"][-1]
+        assert length is not None and abs(length / surface - 1) < 1e-3, (length, surface)
+    shared = paraview(out / f"fields.{ext}", tmp_path / "shared", display, field="phi_left")
+    assert sorted(shared["at"][-1]["arrays"]) == ["mu_left", "mu_right", "phi_left", "phi_right"]
 
 
 @pytest.fixture(scope="module", params=sorted(RUNS))
@@ -93,8 +130,8 @@ def display():
     server.wait(timeout=30)
 
 
-def paraview(index, png_stem, display):
-    proc = subprocess.run(["pvpython", str(PROBE), str(index), str(png_stem)],
+def paraview(index, png_stem, display, field="phi"):
+    proc = subprocess.run(["pvpython", str(PROBE), str(index), str(png_stem), field],
                           capture_output=True, text=True, timeout=600,
                           env={**os.environ, "PYTHONPATH": "", "DISPLAY": display})
     lines = [l for l in proc.stdout.splitlines() if l.startswith("PROBE ")]
