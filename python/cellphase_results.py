@@ -69,9 +69,11 @@ def _data_item(item, run_dir, h5files):
         raise ResultsError(f"{filename}: no dataset {dataset}") from None
 
 
-def fields_index(run_dir):
-    """RUN_DIR/fields.xdmf or RUN_DIR/fields.pvd, whichever exists; None if neither."""
-    for name in ("fields.xdmf", "fields.pvd"):
+def fields_index(run_dir, stem="fields"):
+    """RUN_DIR/<stem>.xdmf or RUN_DIR/<stem>.pvd, whichever exists; None if neither.
+    stem is "fields" (every field on the shared mesh) or "cell.<name>" (a cell's own mesh,
+    with numerics.mesh.cell_meshes: own)."""
+    for name in (f"{stem}.xdmf", f"{stem}.pvd"):
         if (Path(run_dir) / name).is_file():
             return Path(run_dir) / name
     return None
@@ -102,8 +104,8 @@ def _parse_xml(path, what):
         raise ResultsError(f"{path}: not valid XML (is the run still writing it?): {e}") from None
 
 
-def _parse_xdmf(run_dir):
-    path = Path(run_dir) / "fields.xdmf"
+def _parse_xdmf(run_dir, stem="fields"):
+    path = Path(run_dir) / f"{stem}.xdmf"
     domain = _parse_xml(path, "the run wrote no fields").find("Domain")
     if domain is None:
         raise ResultsError(f"{path}: no /Xdmf/Domain element")
@@ -118,12 +120,12 @@ def _xdmf_grids(domain):
                 yield float(grid.find("Time").get("Value")), grid
 
 
-def describe_fields(run_dir):
+def describe_fields(run_dir, stem="fields"):
     """(field names, dimension) of the run's fields (XDMF or VTK); dimension 2 for
     triangle meshes, 3 for tetrahedra, None if unknown."""
-    index = fields_index(run_dir)
+    index = fields_index(run_dir, stem)
     if index is not None and index.suffix == ".pvd":
-        datasets = _pvd_datasets(run_dir)
+        datasets = _pvd_datasets(run_dir, stem)
         if not datasets:
             return [], None
         piece = _vtu_pieces(datasets[0][1])[0]
@@ -133,7 +135,7 @@ def describe_fields(run_dir):
         types = np.fromstring(root.find(".//Cells/DataArray[@Name='types']").text, sep=" ")
         dim = None if len(types) == 0 else (3 if types[0] in (10, 24, 71) else 2)
         return names, dim
-    domain = _parse_xdmf(run_dir)
+    domain = _parse_xdmf(run_dir, stem)
     names = []
     for _, grid in _xdmf_grids(domain):
         for attribute in grid.findall("Attribute"):
@@ -144,17 +146,18 @@ def describe_fields(run_dir):
     return names, None if topology is None else dims.get(topology.get("TopologyType"))
 
 
-def read_fields(run_dir, fields=None):
+def read_fields(run_dir, fields=None, stem="fields"):
     """Yield (time, points, cells, {field: nodal values}) for each output time, in time order.
 
     points is N x gdim (2 for XY, 3 for XYZ), cells M x 3 (triangles) or M x 4
-    (tetrahedra). `fields` restricts which fields are read (default: all).
+    (tetrahedra). `fields` restricts which fields are read (default: all); `stem` picks the
+    index (default fields; cell.<name> for a cell's own mesh).
     """
-    index = fields_index(run_dir)
+    index = fields_index(run_dir, stem)
     if index is not None and index.suffix == ".pvd":
-        yield from _read_vtk(run_dir, fields)
+        yield from _read_vtk(run_dir, fields, stem)
         return
-    domain = _parse_xdmf(run_dir)
+    domain = _parse_xdmf(run_dir, stem)
     # Group the attributes by (time, mesh): one grid per time, or (older indexes) one grid
     # per field and time sharing the mesh of that step.
     steps = {}
@@ -196,9 +199,9 @@ _SPLIT[71] = _SPLIT[24]                                               # Lagrange
 _NODES = {5: 3, 10: 4, 22: 6, 69: 6, 24: 10, 71: 10}
 
 
-def _pvd_datasets(run_dir):
-    """[(time, path of its .vtu or .pvtu)] of RUN_DIR/fields.pvd."""
-    root = _parse_xml(Path(run_dir) / "fields.pvd", "the run wrote no VTK fields")
+def _pvd_datasets(run_dir, stem="fields"):
+    """[(time, path of its .vtu or .pvtu)] of RUN_DIR/<stem>.pvd."""
+    root = _parse_xml(Path(run_dir) / f"{stem}.pvd", "the run wrote no VTK fields")
     return [(float(d.get("timestep")), Path(run_dir) / d.get("file"))
             for d in root.iter("DataSet")]
 
@@ -246,8 +249,8 @@ def _read_vtu(path, fields):
     return points, linear, values
 
 
-def _read_vtk(run_dir, fields):
-    for time, path in sorted(_pvd_datasets(run_dir), key=lambda d: d[0]):
+def _read_vtk(run_dir, fields, stem="fields"):
+    for time, path in sorted(_pvd_datasets(run_dir, stem), key=lambda d: d[0]):
         points, cells, values = [], [], {}
         offset = 0
         for piece in _vtu_pieces(path):

@@ -92,6 +92,11 @@ def test_each_cell_mesh_has_its_own_index(tmp_path, display, output_format):
         assert index.is_file() and (out / f"cell.{name}").is_dir()
         seen = paraview(index, tmp_path / name, display, field=f"phi_{name}")
         assert sorted(seen["at"][-1]["arrays"]) == [f"mu_{name}", f"phi_{name}"]
+        # The project's reader reads the cell's index too: ParaView's range is its range.
+        *_, values = list(cellphase_results.read_fields(out, stem=f"cell.{name}"))[-1]
+        lo, hi = seen["at"][-1]["arrays"][f"phi_{name}"]
+        assert lo == pytest.approx(values[f"phi_{name}"].min(), abs=1e-12)
+        assert hi == pytest.approx(values[f"phi_{name}"].max(), abs=1e-12)
         length = seen["at"][-1]["contour"].get("Length")
         surface = obs[f"{name}.surface"][-1]
         assert length is not None and abs(length / surface - 1) < 1e-3, (length, surface)
