@@ -16,6 +16,7 @@ import pytest
 import yaml
 
 from conftest import EXE, circle_scene, require_exe
+from test_checkpoint import bubble_flow_scene
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
 import cellphase_results  # noqa: E402
@@ -44,17 +45,9 @@ def bases():
     lagrange = circle_scene("helfrich_lagrange", epsilon=0.1)
     lagrange["cells"] = [{"shape": "ellipse", "center": [0, 0], "semi_axes": [1.0, 0.6]}]
     lagrange["flow"] = {"equations": "stokes", "inextensibility": {"xi": 1}}
-    bubble = {
-        "domain": {"lower": [0, 0], "upper": [1, 2], "resolution": [6, 12]},
-        "cells": [{"shape": "circle", "center": [0.5, 0.5], "radius": 0.25}],
-        "phase_field": {"model": "cahn_hilliard", "mobility": 1e-3},
-        "numbers": {"Re": 100, "Ca": 0.385},
-        "flow": {"density": {"inside": 0.1, "outside": 1},
-                 "viscosity": {"inside": 0.1, "outside": 1}, "gravity": [0, -98],
-                 "walls": {"left": "free_slip", "right": "free_slip"}},
-        "numerics": {"epsilon": 0.05, "dt": 1 / 64, "end_time": 2 / 64,
-                     "mesh": {"remesh_every": 1, "points_across_interface": 3}},
-    }
+    bubble = bubble_flow_scene(2 / 64)  # the coarse rising bubble of test_checkpoint
+    bubble["numerics"]["mesh"]["remesh_every"] = 1
+    del bubble["output"]
     pair = {
         "domain": {"lower": [0, 0], "upper": [4, 2], "resolution": [16, 8]},
         "cells": [{"name": "left", "shape": "circle", "center": [1.2, 1], "radius": 0.5},
