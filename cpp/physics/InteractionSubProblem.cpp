@@ -126,12 +126,19 @@ std::array<double, 6> InteractionSubProblem::common_box(const std::array<double,
   return c;
 }
 
-void InteractionSubProblem::update_sums()
+std::vector<std::array<double, 6>> InteractionSubProblem::band_boxes() const
 {
-  const std::size_t n = groups_.size();
   std::vector<std::array<double, 6>> boxes;
   for (const auto& name : phis_)
     boxes.push_back(band_box(*fields_->get(name)));
+  return boxes;
+}
+
+void InteractionSubProblem::update_sums()
+{
+  const std::size_t n = groups_.size();
+  boxes_ = band_boxes();
+  const auto& boxes = boxes_;
   scene::Interaction in = *interaction_;
   const InteractionShape shape{in.r1, in.r2, in.a1, in.a2, in.a3};
   for (std::size_t i = 0; i < n; ++i)
@@ -177,9 +184,10 @@ void InteractionSubProblem::observe(Observation& row)
   // Largest overlap of two cells at the nodes: max_x min(phi~_i, phi~_j), phi~ = (1+phi)/2.
   // With own meshes only pairs whose band boxes meet (elsewhere one phi~ is below 1e-6).
   double worst = 0;
-  std::vector<std::array<double, 6>> boxes;
-  for (const auto& name : phis_)
-    boxes.push_back(own_ ? band_box(*fields_->get(name)) : std::array<double, 6>{});
+  // The boxes of update_sums above (the same phase fields), else computed for the overlap.
+  std::vector<std::array<double, 6>> boxes(phis_.size(), std::array<double, 6>{});
+  if (own_)
+    boxes = interaction_ ? boxes_ : band_boxes();
   for (std::size_t i = 0; i < phis_.size(); ++i)
   {
     auto phi_i = fields_->get(phis_[i])->x()->array();

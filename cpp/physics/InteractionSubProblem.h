@@ -43,7 +43,10 @@ private:
   };
   Samples sample(std::size_t i, std::size_t j, const std::array<double, 6>& box_j) const;
   static bool boxes_meet(const std::array<double, 6>& a, const std::array<double, 6>& b);
+  /// The sums w_sum, B_sum of every cell from the phase fields now; sets boxes_.
   void update_sums();
+  /// band_box of every phase field, in the order of phis_.
+  std::vector<std::array<double, 6>> band_boxes() const;
 
   MPI_Comm comm_;
   double eps_;
@@ -57,5 +60,6 @@ private:
   double reach_level_; ///< phi at the distance beyond which w_j and B(phi_j) vanish
   std::vector<PointEvaluator> evaluate_;    ///< own meshes: phi_j, -1 beyond its mesh
   std::vector<std::vector<double>> nodes_;  ///< own meshes: node coordinates of phi_i's space
+  std::vector<std::array<double, 6>> boxes_; ///< band boxes of the last update_sums
 };
 } // namespace cellphase
