@@ -76,7 +76,8 @@ void Simulation::check_plan() const
     for (const auto& f : sub->writes())
       if (!fields_.declared(f) || fields_.info(f).owner != sub->name())
         throw std::logic_error(sub->name() + " writes " + f + " but does not declare it");
-    plan.steps.push_back({sub->name(), sub->description(), sub->reads(), sub->writes()});
+    plan.steps.push_back({sub->name(), sub->description(), sub->reads(), sub->writes(),
+                          sub->active_from()});
   }
   for (const auto& name : fields_.names())
   {
@@ -124,11 +125,13 @@ void Simulation::attach_all()
     sub->connect(fields_);
 }
 
-StepTimings Simulation::step(double dt)
+StepTimings Simulation::step(double dt, double time)
 {
   StepTimings t;
   for (auto& sub : split_)
   {
+    if (time + 0.5 * dt < sub->active_from())
+      continue; // frozen until then (reaction_diffusion.frozen_until)
     solving_ = sub.get(); // names the module if its solver fails
     t += sub->step(dt);
   }
@@ -612,7 +615,7 @@ void Simulation::run()
     StepTimings timings;
     try
     {
-      timings = step(dt);
+      timings = step(dt, at.time);
     }
     catch (const SolverError& e)
     {

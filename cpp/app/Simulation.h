@@ -85,7 +85,8 @@ private:
   double remesh(double& volume_change);
   /// The new meshes at a remesh: each refined around the zero level sets of its fields.
   std::map<std::string, std::shared_ptr<Mesh>> rebuild_meshes();
-  StepTimings step(double dt);
+  /// One step of the split from `time`; sub-problems not yet active are skipped.
+  StepTimings step(double dt, double time);
   void record(const LoopState& at, const StepTimings& timings, double remesh_time,
               double volume_change);
   /// Throws NumericalFailure (after saving the last good state) if a field is not finite

@@ -36,6 +36,8 @@ public:
   /// Fields it reads while stepping and those it writes (the plan's lists).
   const std::vector<std::string>& reads() const { return step_.reads; }
   const std::vector<std::string>& writes() const { return step_.writes; }
+  /// Steps that begin before this time are skipped (scene/Plan.h, PlanStep::active_from).
+  double active_from() const { return step_.active_from; }
   /// Fields that must be attached before this one can attach (it builds forms on them).
   virtual std::vector<std::string> attach_reads() const { return {}; }
 

@@ -21,6 +21,33 @@ FlowSubProblem::FlowSubProblem(scene::PlanStep step, const scene::Scene& scene, 
     for (const auto& g : groups_)
       group_viscosity_.push_back(
           scene.cells[g.cells.front()].viscosity.value_or(scene.flow->viscosity[1]));
+  for (const auto& r : reads())
+    if (r.ends_with(".force"))
+      force_fields_.push_back(r);
+}
+
+std::vector<std::string> FlowSubProblem::attach_reads() const
+{
+  std::vector<std::string> out;
+  for (const auto& r : reads())
+    if (std::find(force_fields_.begin(), force_fields_.end(), r) == force_fields_.end())
+      out.push_back(r);
+  return out;
+}
+
+void FlowSubProblem::add_sub_problem_forces()
+{
+  auto f = flow_.membrane_force();
+  for (const auto& name : force_fields_)
+  {
+    auto g = fields_->get(name);
+    if (g->function_space() != f->function_space())
+      throw std::logic_error(name + " must live on the flow's velocity space");
+    auto to = f->x()->mutable_array();
+    auto from = g->x()->array();
+    for (std::size_t k = 0; k < to.size(); ++k)
+      to[k] += from[k];
+  }
 }
 
 void FlowSubProblem::declare(FieldRegistry& fields)
@@ -166,8 +193,8 @@ StepTimings FlowSubProblem::step(double dt)
   if (groups_.size() == 1)
   {
     flow_.set_area_target(fields_->scalar("cell.area_target")); // (3.69), fixed at the start
-    if (!cell_force_.empty())
-      flow_.membrane_force()->x()->set(0.0); // f_membrane holds only the cell force
+    if (!cell_force_.empty() || !force_fields_.empty())
+      flow_.membrane_force()->x()->set(0.0); // f_membrane holds only the added forces
   }
   else
   {
@@ -177,6 +204,7 @@ StepTimings FlowSubProblem::step(double dt)
   }
   if (!cell_force_.empty())
     add_cell_force();
+  add_sub_problem_forces();
   const FlowTimings f = flow_.step(dt);
   t.assemble += f.assemble;
   t.factorise = f.factorise;

@@ -16,7 +16,9 @@ class FlowSubProblem : public SubProblem
 public:
   FlowSubProblem(scene::PlanStep step, const scene::Scene& scene, MPI_Comm comm);
 
-  std::vector<std::string> attach_reads() const override { return reads(); }
+  /// Forces of other sub-problems (fields <name>.force) are built after the flow, on its
+  /// velocity space, and read only when stepping.
+  std::vector<std::string> attach_reads() const override;
   void declare(FieldRegistry& fields) override;
   void attach(FieldRegistry& fields) override;
   StepTimings step(double dt) override;
@@ -31,6 +33,8 @@ private:
   void prepare_cell_force(std::shared_ptr<const Function> phi_cells);
   /// f_membrane += F(x) (1 + phi_cells)/2 at the nodes (section 7.3.1).
   void add_cell_force();
+  /// f_membrane += each <name>.force the flow reads (the protrusion force rd.force, 5.7).
+  void add_sub_problem_forces();
   /// cells[i].viscosity: eta <- eta_0 (1 - phi_cells)/2 + sum_i eta_i (1 + phi_i)/2 (7.12).
   void update_viscosity();
 
@@ -51,5 +55,6 @@ private:
   std::vector<double> group_viscosity_; ///< eta_i of each group; empty: eta(phi_cells) (2.56)
   std::shared_ptr<Function> viscosity_;
   std::vector<std::shared_ptr<const Function>> cell_phis_;
+  std::vector<std::string> force_fields_; ///< the reads named <name>.force
 };
 } // namespace cellphase

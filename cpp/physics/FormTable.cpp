@@ -144,6 +144,14 @@ ConcentrationForms concentration_forms(int dim)
           space("concentration", dim, "a")};
 }
 
+GtpaseForms gtpase_forms(int dim)
+{
+  const std::string file = "gtpase";
+  auto get = [&](const std::string& name) { return required(file, dim, name); };
+  return {get("a"), get("L"), space(file, dim, "a"), get("membrane_amount"), get("bulk_amount"),
+          get("membrane_amount_cell"), get("bulk_amount_cell")};
+}
+
 InterfaceForceForms interface_force_forms(int dim)
 {
   return {required("interface_force", dim, "a"), required("interface_force", dim, "L")};

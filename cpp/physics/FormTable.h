@@ -99,4 +99,17 @@ ObservableForms observable_forms(int dim);
 /// forms/flow.py, or with `inextensible` forms/flow_inextensible.py.
 FlowForms flow_forms(int dim, bool inextensible = false);
 ConcentrationForms concentration_forms(int dim);
+
+/// forms/gtpase.py: the coupled step of (5.16)-(5.18) and the species' amounts.
+struct GtpaseForms
+{
+  ufcx_form* a = nullptr;
+  ufcx_form* L = nullptr;
+  ufcx_space_fn space = nullptr; ///< "u0" (c1, c2, C), "phi", "phi_old", "v"
+  ufcx_form* membrane_amount = nullptr;      ///< int delta z (the transport weight)
+  ufcx_form* bulk_amount = nullptr;          ///< int phib z
+  ufcx_form* membrane_amount_cell = nullptr; ///< int |grad phi~| z
+  ufcx_form* bulk_amount_cell = nullptr;     ///< int phi~ z
+};
+GtpaseForms gtpase_forms(int dim);
 } // namespace cellphase

@@ -1,5 +1,6 @@
 #include "scene/Plan.h"
 #include <algorithm>
+#include <cstdio>
 #include <map>
 
 namespace cellphase::scene
@@ -91,7 +92,25 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     }
     if (has_concentration(s))
       flow.reads.push_back("membrane.c");
+    if (has_protrusion(s))
+      flow.reads.push_back("rd.force");
     steps[flow.name] = flow;
+  }
+  if (s.reaction_diffusion)
+  {
+    PlanStep rd{"reaction_diffusion",
+                "reaction-diffusion module (" + s.reaction_diffusion->model
+                    + ", 5.16-5.18" + (s.reaction_diffusion->chemotaxis ? ", 5.21" : "") + ")",
+                {state_field(s, groups.front(), "phi")}, species_fields(s)};
+    if (s.flow)
+      rd.reads.push_back("flow.v");
+    if (has_protrusion(s))
+      rd.writes.push_back("rd.force");
+    steps[rd.name] = rd;
+    // The shape and the flow wait while the pattern forms (section 5.4.1).
+    for (auto& [name, step] : steps)
+      if (name != rd.name)
+        step.active_from = s.reaction_diffusion->frozen_until;
   }
   if (has_concentration(s))
     steps["concentration"] = {"concentration", "membrane concentration module (3.70)",
@@ -113,6 +132,8 @@ std::vector<std::string> default_split(const Scene& s)
       order.push_back(name);
   for (const auto& g : cell_groups(s))
     order.push_back(g.step);
+  if (steps.count("reaction_diffusion"))
+    order.push_back("reaction_diffusion");
   if (steps.count("concentration"))
     order.push_back("concentration");
   return order;
@@ -127,6 +148,20 @@ Plan make_plan(const Scene& s)
   for (const auto& g : cell_groups(s))
     plan.initial.push_back(state_field(s, g, "phi"));
   return plan;
+}
+
+std::vector<std::string> species_fields(const Scene& s)
+{
+  std::vector<std::string> out;
+  if (s.reaction_diffusion)
+    for (const auto& sp : s.reaction_diffusion->species)
+      out.push_back("rd." + sp.name);
+  return out;
+}
+
+bool has_protrusion(const Scene& s)
+{
+  return s.flow && s.reaction_diffusion && s.numbers.Fa.has_value();
 }
 
 bool own_meshes(const Scene& s) { return s.numerics.mesh.cell_meshes == Mesh::CellMeshes::own; }
@@ -192,6 +227,12 @@ std::string plan_problem(const Plan& plan)
 
 std::string plan_text(const Plan& plan)
 {
+  auto fmt_time = [](double t)
+  {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", t);
+    return std::string(b);
+  };
   auto list = [](const std::vector<std::string>& v)
   {
     std::string s;
@@ -203,6 +244,7 @@ std::string plan_text(const Plan& plan)
   int i = 1;
   for (const auto& step : plan.steps)
     text += "  " + std::to_string(i++) + ". " + step.name + ": " + step.description
+            + (step.active_from > 0 ? " (from t = " + fmt_time(step.active_from) + ")" : "")
             + "\n       reads " + list(step.reads) + "; writes " + list(step.writes) + "\n";
   text += "  initial data: " + list(plan.initial) + "\n";
   return text;

@@ -14,6 +14,9 @@ struct PlanStep
   std::string name;        ///< as in numerics.split: "flow", "phase_field", ...
   std::string description; ///< for messages and the plan: "flow (Navier-Stokes, 2.47-2.57)"
   std::vector<std::string> reads, writes;
+  /// Steps that begin before this time are skipped (reaction_diffusion.frozen_until
+  /// freezes the shape and the flow while the pattern forms, section 5.4.1).
+  double active_from = 0;
 };
 
 struct Plan
@@ -45,11 +48,17 @@ bool own_meshes(const Scene& s);
 std::string state_field(const Scene& s, const CellGroup& g, const std::string& field);
 
 /// Sub-problems the scene needs, in the thesis' order (section 5.3: the membrane union,
-/// then the flow with phi^n, the phase field with v^{n+1}, the membrane concentration), or
+/// then the flow with phi^n, the phase field with v^{n+1}, the reaction-diffusion with
+/// phi^{n+1} and v^{n+1}, the membrane concentration), or
 /// in the order of numerics.split. Does not verify it (see plan_problem).
 Plan make_plan(const Scene& s);
 /// The names make_plan would use without numerics.split.
 std::vector<std::string> default_split(const Scene& s);
+/// The species fields of reaction_diffusion: rd.<species>.
+std::vector<std::string> species_fields(const Scene& s);
+/// rd.force, the protrusion force -(1/Fa) c1 grad phi (5.7) the flow adds: with a flow
+/// and numbers.Fa.
+bool has_protrusion(const Scene& s);
 /// "" if every field a step reads is written by a step of the plan or is initial data;
 /// else the problem, naming the step and the field.
 std::string plan_problem(const Plan& plan);

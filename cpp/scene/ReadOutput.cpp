@@ -39,6 +39,9 @@ void read_output(const Section& top, Scene& s)
         allowed.push_back("c"); // concentration of (3.70)
     }
   }
+  if (s.reaction_diffusion)
+    for (const auto& sp : s.reaction_diffusion->species)
+      allowed.push_back(sp.name); // c1, c2, C of forms/gtpase.py
   out.fields = o.strings("fields");
   const Value v = o.value("fields");
   for (std::size_t i = 0; i < out.fields.size(); ++i)

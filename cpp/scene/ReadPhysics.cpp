@@ -52,14 +52,15 @@ void read_numbers(const Section& top, Scene& s)
                       "are derived), not both");
 
   const Section n = top.section("numbers");
-  n.allow_only({"Re", "Ca", "Be"});
+  n.allow_only({"Re", "Ca", "Be", "Fa"});
   s.numbers.Re = n.number("Re", s.numbers.Re, non_negative());
   s.numbers.Ca = n.number("Ca", s.numbers.Ca, positive());
   s.numbers.Be = n.number("Be", s.numbers.Be, positive());
+  s.numbers.Fa = n.optional_number("Fa", positive());
 
   const Section u = top.section("units");
   u.allow_only({"length", "velocity", "density", "viscosity", "bending_rigidity",
-                "surface_tension"});
+                "surface_tension", "protrusion_coefficient"});
   PhysicalUnits& pu = s.units;
   pu.length = u.optional_number("length", positive());
   pu.velocity = u.optional_number("velocity", positive());
@@ -67,6 +68,7 @@ void read_numbers(const Section& top, Scene& s)
   pu.viscosity = u.optional_number("viscosity", positive());
   pu.bending_rigidity = u.optional_number("bending_rigidity", positive());
   pu.surface_tension = u.optional_number("surface_tension", positive());
+  pu.protrusion_coefficient = u.optional_number("protrusion_coefficient", positive());
   if (top.has("units"))
     s.numbers = derive_numbers(pu);
 }

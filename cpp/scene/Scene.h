@@ -3,6 +3,7 @@
 // stay cheap to build and to test.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -103,12 +104,16 @@ struct PhaseField
 struct PhysicalUnits
 {
   std::optional<double> length, velocity, density, viscosity, bending_rigidity, surface_tension;
+  std::optional<double> protrusion_coefficient; ///< alpha of (5.8), N/m^2
 };
 
 /// Dimensionless numbers used by the equations.
 struct Numbers
 {
   double Re = 0, Ca = 1, Be = 1;
+  /// Active surface force number (5.8) of the protrusion force -(1/Fa) c1 grad phi (5.7);
+  /// absent: no protrusion force.
+  std::optional<double> Fa;
   std::optional<double> time_scale_s; ///< L/V when units are given
 };
 
@@ -237,6 +242,50 @@ struct Flow
   std::optional<Inextensibility> inextensibility; ///< absent: the membrane may stretch
 };
 
+/// Initial value of one species: a constant, a constant where a formula is true (else
+/// another), or uniformly random in [low, high] (seeded, reaction_diffusion.seed).
+struct SpeciesInitial
+{
+  double value = 0;
+  std::string where;      ///< muparser condition in x, y, z; empty: everywhere
+  double otherwise = 0;   ///< where the condition is false
+  std::optional<std::array<double, 2>> random; ///< [low, high]
+};
+
+/// One species of a reaction-diffusion model: its region is fixed by the model's form file.
+struct Species
+{
+  std::string name;        ///< as in the form file: c1, c2, C
+  bool membrane = true;    ///< on the membrane (weight |grad phi~|, 2.39) or in the bulk (phi~, 2.36)
+  double diffusion = 1;
+  SpeciesInitial initial;
+};
+
+/// Chemotactic signal of (5.21), the four modes of section 5.4.3.
+struct Chemotaxis
+{
+  enum class Mode { rotating, sinusoidal, random_turns, point_source } mode = Mode::rotating;
+  double xi = 5;                 ///< signal strength
+  double omega = 0;              ///< angular velocity (modes 1, 2) or turning angle (mode 3), radians
+  int theta = 1;                 ///< mode 3: steps between turns
+  double direction_deg = 0;      ///< mode 3: initial direction
+  std::array<double, 3> x0{0, 0, 0}; ///< mode 4: the source point (outside the domain)
+};
+
+/// Bulk-surface reaction-diffusion on the diffuse cell (2.45)-(2.46); model gtpase is
+/// (5.1)-(5.6) in the diffuse form (5.16)-(5.18), forms/gtpase.py.
+struct ReactionDiffusion
+{
+  std::string model = "gtpase";
+  std::vector<Species> species;            ///< in the order of the form's mixed space
+  std::map<std::string, double> kinetics;  ///< a1..a5, b1, b2, gamma (gbar of 5.2-5.4)
+  double regularisation = 1e-6;            ///< rho of the weights (forms/gtpase.py)
+  std::uint64_t seed = 1;                  ///< random initial values and turns
+  /// The shape and the flow stay frozen until this time (the pre-polarisation of 5.4.1).
+  double frozen_until = 0;
+  std::optional<Chemotaxis> chemotaxis;
+};
+
 struct Scene
 {
   std::string source;                ///< file the scene came from
@@ -256,6 +305,7 @@ struct Scene
   Output output;
   std::optional<Flow> flow;           ///< absent: no flow module at all
   std::optional<Interaction> interaction; ///< absent: the cells do not interact
+  std::optional<ReactionDiffusion> reaction_diffusion; ///< absent: no signalling species
 };
 
 const char* to_string(Model m);

@@ -11,6 +11,7 @@ DerivedFlags derivable_numbers(const PhysicalUnits& u)
   f.Ca = u.viscosity && u.velocity && u.surface_tension;
   f.Be = u.viscosity && u.velocity && u.length && u.bending_rigidity;
   f.time_scale = u.length && u.velocity;
+  f.Fa = u.viscosity && u.velocity && u.length && u.protrusion_coefficient;
   return f;
 }
 
@@ -26,6 +27,8 @@ Numbers derive_numbers(const PhysicalUnits& u)
   if (f.Be)
     n.Be = 4 * sqrt2 * *u.viscosity * *u.velocity * *u.length * *u.length
            / (3 * *u.bending_rigidity);
+  if (f.Fa) // (5.8)
+    n.Fa = *u.viscosity * *u.velocity / (*u.protrusion_coefficient * *u.length);
   if (f.time_scale)
     n.time_scale_s = *u.length / *u.velocity;
   return n;

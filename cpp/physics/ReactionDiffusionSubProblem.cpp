@@ -1,0 +1,382 @@
+#include "physics/ReactionDiffusionSubProblem.h"
+#include "scene/Formula.h"
+#include "scene/Plan.h"
+#include "solve/Assemble.h"
+#include "util/Clock.h"
+#include <cmath>
+#include <dolfinx/fem/assembler.h>
+#include <numbers>
+#include <stdexcept>
+
+namespace cellphase
+{
+namespace
+{
+std::shared_ptr<Constant> constant(double v) { return std::make_shared<Constant>(v); }
+
+std::shared_ptr<Constant> vector_constant(const std::array<double, 3>& v, int dim)
+{
+  return std::make_shared<Constant>(std::span<const double>(v.data(), std::size_t(dim)));
+}
+
+/// splitmix64: a well-mixed 64-bit hash, so that random values depend only on the seed and
+/// what is hashed (a node's position, a turn's number), not on the partition or the order.
+std::uint64_t mix(std::uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+/// Uniform in [0, 1) from the seed, a stream number and a point.
+double uniform(std::uint64_t seed, std::uint64_t stream, double x, double y, double z)
+{
+  std::uint64_t h = mix(seed ^ mix(stream));
+  for (double c : {x, y, z})
+    h = mix(h ^ std::uint64_t(std::llround(c * 1e9)));
+  return double(h >> 11) * 0x1.0p-53;
+}
+} // namespace
+
+ReactionDiffusionSubProblem::ReactionDiffusionSubProblem(scene::PlanStep step,
+                                                         const scene::Scene& scene, MPI_Comm comm)
+    : SubProblem(std::move(step)), scene_(scene), rd_(*scene.reaction_diffusion), comm_(comm)
+{
+  phi_name_ = reads().front();
+  const int dim = scene.domain.dim;
+  forms_ = gtpase_forms(dim);
+  force_forms_ = interface_force_forms(dim);
+  dt_ = constant(1.0);
+  chem_dir_ = vector_constant({0, 0, 0}, dim);
+  chem_x0_ = vector_constant(rd_.chemotaxis ? rd_.chemotaxis->x0 : std::array<double, 3>{0, 0, 0},
+                             dim);
+  const bool point = rd_.chemotaxis
+                     && rd_.chemotaxis->mode == scene::Chemotaxis::Mode::point_source;
+  chem_point_ = constant(point ? 1.0 : 0.0);
+  chem_xi_ = constant(rd_.chemotaxis ? rd_.chemotaxis->xi : 0.0);
+  const auto& k = rd_.kinetics;
+  constants_ = {{"dt", dt_},
+                {"rho", constant(rd_.regularisation)},
+                {"d_c1", constant(rd_.species[0].diffusion)},
+                {"d_c2", constant(rd_.species[1].diffusion)},
+                {"D_C", constant(rd_.species[2].diffusion)},
+                {"gbar", constant(k.at("gamma"))},
+                {"chem_dir", chem_dir_},
+                {"chem_x0", chem_x0_},
+                {"chem_point", chem_point_},
+                {"chem_xi", chem_xi_}};
+  for (const char* name : {"a1", "a2", "a3", "a4", "a5", "b1", "b2"})
+    constants_[name] = constant(k.at(name));
+}
+
+void ReactionDiffusionSubProblem::declare(FieldRegistry& fields)
+{
+  for (const auto& sp : rd_.species)
+    fields.declare({"rd." + sp.name, sp.name, name(), FieldSpace::scalar_p2, Transfer::interpolate,
+                    true});
+  if (scene::has_protrusion(scene_))
+    fields.declare({"rd.force", "protrusion_force", name(), FieldSpace::other,
+                    Transfer::recompute, false});
+}
+
+void ReactionDiffusionSubProblem::set_initial(std::size_t i, Function& c) const
+{
+  const scene::SpeciesInitial& init = rd_.species[i].initial;
+  if (init.random)
+  {
+    const double lo = (*init.random)[0], hi = (*init.random)[1];
+    const std::uint64_t seed = rd_.seed;
+    compat::interpolate(c, [&](double x, double y, double z)
+                        { return lo + (hi - lo) * uniform(seed, i + 1, x, y, z); });
+    return;
+  }
+  if (init.where.empty())
+  {
+    c.x()->set(init.value);
+    return;
+  }
+  const scene::VectorFormula where({init.where, "0", "0"}, 1);
+  compat::interpolate(c, [&](double x, double y, double z)
+                      { return where(x, y, z)[0] != 0 ? init.value : init.otherwise; });
+}
+
+void ReactionDiffusionSubProblem::attach(FieldRegistry& fields)
+{
+  phi_ = fields.get(phi_name_);
+  auto V = std::const_pointer_cast<Space>(phi_->function_space());
+  auto mesh = V->mesh();
+  W_ = compat::create_space(forms_.space, "u0", mesh);
+  species_.clear();
+  for (std::size_t i = 0; i < rd_.species.size(); ++i)
+  {
+    const std::string name = "rd." + rd_.species[i].name;
+    auto c = fields.find(name); // moved from the last mesh or restored; null: a new run
+    if (!c)
+    {
+      c = std::make_shared<Function>(V);
+      set_initial(i, *c);
+    }
+    else if (c->function_space() != V)
+    {
+      auto copy = std::make_shared<Function>(V);
+      copy->interpolate(*c); // same element and mesh: a copy in V's dof order
+      c = copy;
+    }
+    c->name = rd_.species[i].name;
+    species_.push_back(c);
+    fields.set(name, c);
+  }
+  phi_old_ = std::make_shared<Function>(V);
+  std::copy(phi_->x()->array().begin(), phi_->x()->array().end(),
+            phi_old_->x()->mutable_array().begin());
+
+  // V dof -> W dof per species, through the cell-local dof order (W's sub-elements are V's).
+  to_mixed_.assign(rd_.species.size(), {});
+  const std::int32_t ncells = mesh->topology().index_map(mesh->topology().dim())->size_local()
+                              + mesh->topology().index_map(mesh->topology().dim())->num_ghosts();
+  const std::size_t nV = V->dofmap()->index_map->size_local() + V->dofmap()->index_map->num_ghosts();
+  for (std::size_t i = 0; i < rd_.species.size(); ++i)
+  {
+    auto sub = W_->sub({int(i)});
+    to_mixed_[i].assign(nV, 0);
+    for (std::int32_t c = 0; c < ncells; ++c)
+    {
+      auto vd = V->dofmap()->cell_dofs(c);
+      auto wd = sub->dofmap()->cell_dofs(c);
+      for (std::size_t k = 0; k < vd.size(); ++k)
+        to_mixed_[i][vd[k]] = wd[k];
+    }
+  }
+  u0_ = std::make_shared<Function>(W_);
+  amount_.clear();
+  amount_cell_.clear();
+  for (std::size_t i = 0; i < species_.size(); ++i)
+  {
+    const bool membrane = rd_.species[i].membrane;
+    CoefficientMap coeffs{{"z", species_[i]}, {"phi_h", phi_}};
+    amount_.push_back(compat::create_form(membrane ? *forms_.membrane_amount : *forms_.bulk_amount,
+                                          {}, coeffs, constants_, mesh));
+    amount_cell_.push_back(compat::create_form(
+        membrane ? *forms_.membrane_amount_cell : *forms_.bulk_amount_cell, {}, coeffs,
+        constants_, mesh));
+  }
+  // A remesh moved the species by interpolation, and the phase field with its volume kept:
+  // scale each species back to its amount before the remesh (positive factors keep c >= 0).
+  if (!kept_.empty())
+  {
+    const auto now = amounts();
+    for (std::size_t i = 0; i < species_.size(); ++i)
+      if (now[i] != 0)
+      {
+        const double f = kept_[i] / now[i];
+        for (double& x : species_[i]->x()->mutable_array())
+          x *= f;
+      }
+  }
+  kept_ = amounts();
+  a_.reset();
+  L_.reset();
+  force_.reset();
+}
+
+void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
+{
+  auto V = phi_->function_space();
+  auto mesh = V->mesh();
+  if (auto v = fields.find("flow.v"))
+    v_ = v;
+  else
+  {
+    auto zero = std::make_shared<Function>(fields.space("", FieldSpace::vector_p2));
+    zero->x()->set(0.0);
+    v_ = zero;
+  }
+  CoefficientMap coeffs{{"u0", u0_}, {"phi", phi_}, {"phi_old", phi_old_}, {"v", v_}};
+  a_ = compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_);
+  L_ = compat::create_form(*forms_.L, {W_}, coeffs, constants_);
+  const auto box = compat::bounding_box(*mesh);
+  constraint_ = std::make_unique<PeriodicConstraint>(W_, box[0], box[1], scene_.domain.periodic);
+  A_ = std::make_unique<dolfinx::la::petsc::Matrix>(constraint_->create_matrix(*a_));
+  b_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
+  x_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
+  solver_ = std::make_unique<LinearSolver>(comm_, "rd_", scene_.numerics.petsc);
+
+  if (scene::has_protrusion(scene_))
+  {
+    // On the flow's velocity space, so that the flow adds it to its free force directly.
+    auto Vf = std::const_pointer_cast<Space>(fields.get("flow.v")->function_space());
+    force_ = std::make_shared<Function>(Vf);
+    force_->name = "protrusion_force";
+    ConstantMap c{{"capillary", constant(-1.0 / *scene_.numbers.Fa)}};
+    force_L_ = compat::create_form(*force_forms_.L, {Vf}, {{"phi", phi_}, {"mu", species_[0]}}, c);
+    auto a = compat::create_form(*force_forms_.a, {Vf, Vf}, {}, {});
+    force_mass_ = create_matrix(*a);
+    assemble_matrix(force_mass_->mat(), *a, {});
+    force_solver_ = std::make_unique<LinearSolver>(comm_, "rd_force_",
+                                                   std::map<std::string, std::string>{},
+                                                   Symmetry::positive_definite);
+    force_solver_->set_operator(force_mass_->mat());
+    update_force();
+    fields.set("rd.force", force_);
+  }
+}
+
+void ReactionDiffusionSubProblem::update_force()
+{
+  dolfinx::la::Vector<T> b(force_->function_space()->dofmap()->index_map,
+                           force_->function_space()->dofmap()->index_map_bs());
+  b.set(0.0);
+  dolfinx::fem::assemble_vector(b.mutable_array(), *force_L_);
+  b.scatter_rev(std::plus<T>());
+  force_solver_->solve(b, *force_->x(), "the projection of the protrusion force (5.7)");
+  force_->x()->scatter_fwd();
+}
+
+void ReactionDiffusionSubProblem::update_signal(double t)
+{
+  if (!rd_.chemotaxis)
+    return;
+  using Mode = scene::Chemotaxis::Mode;
+  const scene::Chemotaxis& ch = *rd_.chemotaxis;
+  double angle = 0;
+  std::array<double, 3> g{0, 0, 0};
+  switch (ch.mode)
+  {
+  case Mode::rotating: // mode 1: xi (cos wt, sin wt)
+    g = {ch.xi * std::cos(ch.omega * t), ch.xi * std::sin(ch.omega * t), 0};
+    break;
+  case Mode::sinusoidal: // mode 2: xi (1, sin wt)
+    g = {ch.xi, ch.xi * std::sin(ch.omega * t), 0};
+    break;
+  case Mode::random_turns: // mode 3: a turn by -w, 0 or w every theta steps
+  {
+    angle = ch.direction_deg * std::numbers::pi / 180;
+    const std::int64_t turns = std::int64_t(std::llround(t / scene_.numerics.dt)) / ch.theta;
+    for (std::int64_t j = 1; j <= turns; ++j)
+      angle += ch.omega * double(std::int64_t(mix(rd_.seed ^ mix(1000 + j)) % 3) - 1);
+    g = {ch.xi * std::cos(angle), ch.xi * std::sin(angle), 0};
+    break;
+  }
+  case Mode::point_source: // mode 4: in the form, from x0
+    break;
+  }
+  for (int a = 0; a < scene_.domain.dim; ++a)
+    chem_dir_->value[a] = g[a];
+}
+
+StepTimings ReactionDiffusionSubProblem::step(double dt)
+{
+  if (!a_)
+    throw std::logic_error("reaction_diffusion: step before connect");
+  StepTimings t;
+  auto t0 = Clock::now();
+  dt_->value[0] = dt;
+  update_signal(time_ + dt);
+  {
+    auto u = u0_->x()->mutable_array();
+    for (std::size_t i = 0; i < species_.size(); ++i)
+    {
+      auto c = species_[i]->x()->array();
+      for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
+        u[to_mixed_[i][d]] = c[d];
+    }
+  }
+  // The matrix holds phi^{n+1}, v^{n+1} and the kinetics at c^n: new every step.
+  constraint_->assemble_matrix(A_->mat(), *a_, {});
+  constraint_->assemble_vector(*b_, *L_, a_, {});
+  t.assemble = seconds_since(t0);
+  t.factorise = solver_->set_operator(A_->mat());
+  ++factorisations_;
+  auto t2 = Clock::now();
+  solver_->solve(*b_, *x_, "the reaction-diffusion system (5.16)-(5.18)");
+  constraint_->backsubstitute(*x_);
+  t.solve = seconds_since(t2);
+  auto x = x_->array();
+  for (std::size_t i = 0; i < species_.size(); ++i)
+  {
+    auto c = species_[i]->x()->mutable_array();
+    for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
+      c[d] = x[to_mixed_[i][d]];
+  }
+  // phi^{n+1} becomes the old weight of the next step.
+  std::copy(phi_->x()->array().begin(), phi_->x()->array().end(),
+            phi_old_->x()->mutable_array().begin());
+  time_ += dt;
+  kept_ = amounts();
+  if (force_)
+  {
+    auto t3 = Clock::now();
+    update_force(); // c1^{n+1} grad phi^{n+1}: the next flow step's c^n grad phi^n
+    t.assemble += seconds_since(t3);
+  }
+  return t;
+}
+
+std::vector<double> ReactionDiffusionSubProblem::amounts() const
+{
+  std::vector<double> out;
+  for (const auto& f : amount_)
+    out.push_back(compat::assemble_scalar(*f));
+  return out;
+}
+
+void ReactionDiffusionSubProblem::observe(Observation& row)
+{
+  const auto kept = amounts();
+  double membrane = 0, bulk = 0, cell = 0;
+  for (std::size_t i = 0; i < species_.size(); ++i)
+  {
+    (rd_.species[i].membrane ? membrane : bulk) += kept[i];
+    cell += compat::assemble_scalar(*amount_cell_[i]);
+  }
+  row.extra.push_back({"rd_mass", membrane + bulk});
+  row.extra.push_back({"rd_mass_membrane", membrane});
+  row.extra.push_back({"rd_mass_bulk", bulk});
+  row.extra.push_back({"rd_mass_cell", cell});
+
+  // The largest c1 on the membrane (|phi| < 0.9) and its angle about the cell's centre.
+  const auto x = species_[0]->function_space()->tabulate_dof_coordinates(false);
+  auto c1 = species_[0]->x()->array();
+  auto phi = phi_->x()->array();
+  const std::int32_t owned = species_[0]->function_space()->dofmap()->index_map->size_local();
+  struct
+  {
+    double value;
+    int rank;
+  } best{-INFINITY, 0}, global;
+  std::int32_t at = -1;
+  for (std::int32_t d = 0; d < owned; ++d)
+    if (std::abs(phi[d]) < 0.9 && c1[d] > best.value)
+    {
+      best.value = c1[d];
+      at = d;
+    }
+  MPI_Comm_rank(comm_, &best.rank);
+  MPI_Allreduce(&best, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_);
+  std::array<double, 2> where{0, 0};
+  if (best.rank == global.rank && at >= 0)
+    where = {x[3 * at], x[3 * at + 1]};
+  MPI_Bcast(where.data(), 2, MPI_DOUBLE, global.rank, comm_);
+  const auto& centre = row.values.center;
+  const double angle = std::atan2(where[1] - centre[1], where[0] - centre[0]) * 180 / std::numbers::pi;
+  row.extra.push_back({"rd_c1_max", std::isfinite(global.value) ? global.value : 0.0});
+  row.extra.push_back({"rd_c1_angle_deg", std::isfinite(global.value) ? angle : 0.0});
+}
+
+void ReactionDiffusionSubProblem::save(CheckpointData& data) const
+{
+  data.set(name() + ".time", time_);
+}
+
+void ReactionDiffusionSubProblem::restore(const CheckpointData& data)
+{
+  time_ = data.scalar(name() + ".time");
+  kept_.clear(); // amounts of the restored mesh, computed at attach
+}
+
+std::int64_t ReactionDiffusionSubProblem::num_dofs() const
+{
+  return W_ ? compat::num_global_dofs(*W_) : 0;
+}
+} // namespace cellphase

@@ -1,0 +1,79 @@
+// Bulk-surface reaction-diffusion on the diffuse cell (thesis 2.6, chapter 5) as a
+// sub-problem: the GTPase species c1, c2 (membrane) and C (cytoplasm) of forms/gtpase.py,
+// (5.16)-(5.18), one coupled implicit step after the phase field (section 5.3, step 4),
+// with phi^{n+1} and v^{n+1}. With a flow and numbers.Fa it also writes the protrusion
+// force -(1/Fa) c1 grad phi (5.7) that the flow adds at the next step (rd.force).
+#pragma once
+#include "compat/Periodic.h"
+#include "core/SubProblem.h"
+#include "physics/FormTable.h"
+#include "scene/Scene.h"
+#include "solve/LinearSolver.h"
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace cellphase
+{
+class ReactionDiffusionSubProblem : public SubProblem
+{
+public:
+  ReactionDiffusionSubProblem(scene::PlanStep step, const scene::Scene& scene, MPI_Comm comm);
+
+  std::vector<std::string> attach_reads() const override { return {phi_name_}; }
+  void declare(FieldRegistry& fields) override;
+  void attach(FieldRegistry& fields) override;
+  void connect(FieldRegistry& fields) override;
+  StepTimings step(double dt) override;
+  void observe(Observation& row) override;
+  void save(CheckpointData& data) const override;
+  void restore(const CheckpointData& data) override;
+  std::int64_t num_dofs() const override;
+  int factorisations() const override { return factorisations_; }
+
+  /// Per species, the amount in the transport weights: what the scheme conserves.
+  std::vector<double> amounts() const;
+
+private:
+  /// The species' initial values (scene, section 5.4.1): constants, a region, or random.
+  void set_initial(std::size_t i, Function& c) const;
+  /// grad c~ of (5.21) at time t: the chemotaxis constants of the form.
+  void update_signal(double t);
+  /// rd.force <- L2 projection of -(1/Fa) c1 grad phi (5.7) onto the flow's velocity space.
+  void update_force();
+
+  const scene::Scene& scene_;
+  const scene::ReactionDiffusion& rd_;
+  MPI_Comm comm_;
+  std::string phi_name_;
+  GtpaseForms forms_;
+  InterfaceForceForms force_forms_;
+  ConstantMap constants_;
+  std::shared_ptr<Constant> dt_, chem_dir_, chem_point_, chem_xi_, chem_x0_;
+
+  std::shared_ptr<const Function> phi_;    ///< phi^{n+1} (the phase field's, in place)
+  std::shared_ptr<Function> phi_old_;      ///< phi^n: the weights of the old amounts
+  std::shared_ptr<Space> W_;               ///< (c1, c2, C)
+  std::vector<std::vector<std::int32_t>> to_mixed_; ///< per species: V dof -> W dof
+  std::vector<std::shared_ptr<Function>> species_; ///< standalone, in the registry
+  std::shared_ptr<Function> u_, u0_;       ///< the mixed solution and (c^n)
+  std::shared_ptr<const Function> v_;      ///< the flow's v^{n+1}, or zero
+  std::shared_ptr<Form> a_, L_;
+  std::vector<std::shared_ptr<Form>> amount_, amount_cell_; ///< per species
+  std::unique_ptr<PeriodicConstraint> constraint_;
+  std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
+  std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
+  std::unique_ptr<LinearSolver> solver_;
+  int factorisations_ = 0;
+
+  // Amounts after the last step: a remesh scales the moved species back to them.
+  std::vector<double> kept_;
+  double time_ = 0; ///< time of the species (checkpointed: the chemotactic signal's clock)
+
+  // Protrusion force (with a flow and numbers.Fa)
+  std::shared_ptr<Function> force_;
+  std::shared_ptr<Form> force_L_;
+  std::unique_ptr<dolfinx::la::petsc::Matrix> force_mass_;
+  std::unique_ptr<LinearSolver> force_solver_;
+};
+} // namespace cellphase
