@@ -335,7 +335,20 @@ void ReactionDiffusionSubProblem::observe(Observation& row)
   row.extra.push_back({"rd_mass_bulk", bulk});
   row.extra.push_back({"rd_mass_cell", cell});
 
-  // The largest c1 on the membrane (|phi| < 0.9) and its angle about the cell's centre.
+  // The largest and smallest c1 on the membrane (|phi| < 0.9), and their angles about the
+  // cell's centre: the polarity of the pattern (front at the maximum).
+  for (const double sign : {1.0, -1.0})
+  {
+    const auto [value, angle] = membrane_extremum(sign, row.values.center);
+    const char* what = sign > 0 ? "max" : "min";
+    row.extra.push_back({std::string("rd_c1_") + what, value});
+    row.extra.push_back({std::string("rd_c1_") + what + "_angle_deg", angle});
+  }
+}
+
+std::pair<double, double>
+ReactionDiffusionSubProblem::membrane_extremum(double sign, const std::array<double, 3>& centre) const
+{
   const auto x = species_[0]->function_space()->tabulate_dof_coordinates(false);
   auto c1 = species_[0]->x()->array();
   auto phi = phi_->x()->array();
@@ -347,21 +360,21 @@ void ReactionDiffusionSubProblem::observe(Observation& row)
   } best{-INFINITY, 0}, global;
   std::int32_t at = -1;
   for (std::int32_t d = 0; d < owned; ++d)
-    if (std::abs(phi[d]) < 0.9 && c1[d] > best.value)
+    if (std::abs(phi[d]) < 0.9 && sign * c1[d] > best.value)
     {
-      best.value = c1[d];
+      best.value = sign * c1[d];
       at = d;
     }
   MPI_Comm_rank(comm_, &best.rank);
   MPI_Allreduce(&best, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_);
+  if (!std::isfinite(global.value))
+    return {0.0, 0.0}; // no membrane node (not reached for a cell inside the domain)
   std::array<double, 2> where{0, 0};
   if (best.rank == global.rank && at >= 0)
     where = {x[3 * at], x[3 * at + 1]};
   MPI_Bcast(where.data(), 2, MPI_DOUBLE, global.rank, comm_);
-  const auto& centre = row.values.center;
-  const double angle = std::atan2(where[1] - centre[1], where[0] - centre[0]) * 180 / std::numbers::pi;
-  row.extra.push_back({"rd_c1_max", std::isfinite(global.value) ? global.value : 0.0});
-  row.extra.push_back({"rd_c1_angle_deg", std::isfinite(global.value) ? angle : 0.0});
+  return {sign * global.value,
+          std::atan2(where[1] - centre[1], where[0] - centre[0]) * 180 / std::numbers::pi};
 }
 
 void ReactionDiffusionSubProblem::save(CheckpointData& data) const

@@ -11,6 +11,7 @@
 #include "solve/LinearSolver.h"
 #include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace cellphase
@@ -39,6 +40,9 @@ private:
   void set_initial(std::size_t i, Function& c) const;
   /// grad c~ of (5.21) at time t: the chemotaxis constants of the form.
   void update_signal(double t);
+  /// The largest (sign 1) or smallest (sign -1) c1 on the membrane and its angle (degrees)
+  /// about `centre`.
+  std::pair<double, double> membrane_extremum(double sign, const std::array<double, 3>& centre) const;
   /// rd.force <- L2 projection of -(1/Fa) c1 grad phi (5.7) onto the flow's velocity space.
   void update_force();
 

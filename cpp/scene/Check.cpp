@@ -88,6 +88,53 @@ std::string vector_text(const std::array<double, 3>& v, int dim)
 }
 
 /// The flow section: equations with the numbers that enter them.
+std::string initial_text(const SpeciesInitial& i)
+{
+  if (i.random)
+    return "random in [" + fmt((*i.random)[0]) + ", " + fmt((*i.random)[1]) + "]";
+  if (i.where.empty())
+    return fmt(i.value);
+  return fmt(i.value) + " where " + i.where + ", else " + fmt(i.otherwise);
+}
+
+void reaction_diffusion_report(const Scene& s, Report& r)
+{
+  const ReactionDiffusion& rd = *s.reaction_diffusion;
+  r.line("reaction-diffusion", "model " + rd.model + " (forms/" + rd.model
+                                   + ".py), regularisation " + fmt(rd.regularisation)
+                                   + ", seed " + std::to_string(rd.seed));
+  for (const auto& sp : rd.species)
+    r.line("  species " + sp.name, std::string(sp.membrane ? "membrane" : "bulk") + ", diffusion "
+                                       + fmt(sp.diffusion) + ", initial "
+                                       + initial_text(sp.initial));
+  std::string k;
+  for (const auto& [name, value] : rd.kinetics)
+    k += (k.empty() ? "" : ", ") + name + " " + fmt(value);
+  r.line("  kinetics", k);
+  if (rd.frozen_until > 0)
+    r.line("  frozen", "shape and flow frozen until t = " + fmt(rd.frozen_until)
+                           + " (the pattern forms on the initial shape)");
+  if (s.flow)
+    r.line("  protrusion", s.numbers.Fa ? "-(1/Fa) c1 grad phi with Fa = " + fmt(*s.numbers.Fa)
+                                         + " (5.7)"
+                                        : "none (numbers.Fa absent)");
+  if (rd.chemotaxis)
+  {
+    const Chemotaxis& c = *rd.chemotaxis;
+    const char* modes[] = {"rotating (mode 1)", "sinusoidal (mode 2)", "random turns (mode 3)",
+                           "point source (mode 4)"};
+    std::string text = std::string(modes[int(c.mode)]) + ", xi " + fmt(c.xi);
+    if (c.mode == Chemotaxis::Mode::random_turns)
+      text += ", turns of " + fmt(c.omega * 180 / std::numbers::pi) + " deg every "
+              + std::to_string(c.theta) + " steps";
+    else if (c.mode == Chemotaxis::Mode::point_source)
+      text += ", x0 " + point(c.x0, s.domain.dim);
+    else
+      text += ", omega " + fmt(c.omega);
+    r.line("  chemotaxis", text);
+  }
+}
+
 void flow_report(const Scene& s, Report& r)
 {
   const Flow& f = *s.flow;
@@ -295,13 +342,16 @@ std::string check_report(const Scene& s)
   const DerivedFlags from_units = derivable_numbers(s.units);
   auto origin = [&](bool derived) { return derived ? "" : " (default)"; };
   const bool units = s.units.length || s.units.velocity || s.units.density || s.units.viscosity
-                     || s.units.bending_rigidity || s.units.surface_tension;
+                     || s.units.bending_rigidity || s.units.surface_tension
+                     || s.units.protrusion_coefficient;
   if (units)
     r.line("numbers (from units)", "Re = " + fmt(n.Re) + origin(from_units.Re) + ", Ca = "
                                        + fmt(n.Ca) + origin(from_units.Ca) + ", Be = "
-                                       + fmt(n.Be) + origin(from_units.Be));
+                                       + fmt(n.Be) + origin(from_units.Be)
+                                       + (n.Fa ? ", Fa = " + fmt(*n.Fa) : ""));
   else
-    r.line("numbers", "Re = " + fmt(n.Re) + ", Ca = " + fmt(n.Ca) + ", Be = " + fmt(n.Be));
+    r.line("numbers", "Re = " + fmt(n.Re) + ", Ca = " + fmt(n.Ca) + ", Be = " + fmt(n.Be)
+                          + (n.Fa ? ", Fa = " + fmt(*n.Fa) : ""));
   if (n.time_scale_s)
     r.line("time scale", "L/V = " + fmt(*n.time_scale_s) + " s; end time "
                              + fmt(s.numerics.end_time * *n.time_scale_s) + " s");
@@ -310,6 +360,9 @@ std::string check_report(const Scene& s)
     flow_report(s, r);
   else
     r.line("flow", "none (phase field only)");
+
+  if (s.reaction_diffusion)
+    reaction_diffusion_report(s, r);
 
   r.out_ << "  operator split" << (s.numerics.split ? " (numerics.split)" : " (the thesis' order)")
          << ", one step:\n" << plan_text(make_plan(s));
