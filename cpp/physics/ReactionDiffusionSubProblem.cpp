@@ -3,6 +3,7 @@
 #include "scene/Plan.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
+#include <algorithm>
 #include <cmath>
 #include <dolfinx/fem/assembler.h>
 #include <numbers>
@@ -34,7 +35,7 @@ double uniform(std::uint64_t seed, std::uint64_t stream, double x, double y, dou
 {
   std::uint64_t h = mix(seed ^ mix(stream));
   for (double c : {x, y, z})
-    h = mix(h ^ std::uint64_t(std::llround(c * 1e9)));
+    h = mix(h ^ std::uint64_t(std::llround(c * 1e9))); // c is snapped: no last-bit noise
   return double(h >> 11) * 0x1.0p-53;
 }
 } // namespace
@@ -82,13 +83,22 @@ void ReactionDiffusionSubProblem::declare(FieldRegistry& fields)
 
 void ReactionDiffusionSubProblem::set_initial(std::size_t i, Function& c) const
 {
+  // DOLFINx interpolates cell by cell, and a node shared by cells gets the coordinates its
+  // last cell computes, which differ in the last bits between cells (and so between
+  // partitions). Snapped to 1e-12 of the domain, a node on "x > 0"'s line x = 0 or under
+  // the random hash gives the same value on any number of ranks.
+  double extent = 0;
+  for (int a = 0; a < scene_.domain.dim; ++a)
+    extent = std::max(extent, scene_.domain.upper[a] - scene_.domain.lower[a]);
+  const double grid = 1e-12 * extent;
+  auto snap = [grid](double x) { return std::round(x / grid) * grid; };
   const scene::SpeciesInitial& init = rd_.species[i].initial;
   if (init.random)
   {
     const double lo = (*init.random)[0], hi = (*init.random)[1];
     const std::uint64_t seed = rd_.seed;
     compat::interpolate(c, [&](double x, double y, double z)
-                        { return lo + (hi - lo) * uniform(seed, i + 1, x, y, z); });
+                        { return lo + (hi - lo) * uniform(seed, i + 1, snap(x), snap(y), snap(z)); });
     return;
   }
   if (init.where.empty())
@@ -98,7 +108,7 @@ void ReactionDiffusionSubProblem::set_initial(std::size_t i, Function& c) const
   }
   const scene::VectorFormula where({init.where, "0", "0"}, 1);
   compat::interpolate(c, [&](double x, double y, double z)
-                      { return where(x, y, z)[0] != 0 ? init.value : init.otherwise; });
+                      { return where(snap(x), snap(y), snap(z))[0] != 0 ? init.value : init.otherwise; });
 }
 
 void ReactionDiffusionSubProblem::attach(FieldRegistry& fields)
