@@ -1,9 +1,9 @@
 # GTPase signalling network on the diffuse cell (thesis 2.6 and chapter 5), one implicit
 # step after the flow and the phase field (section 5.3, step 4):
-#   d_t(phib C)   + div(phib v C)   = D_C  div(phib grad C)  - gbar delta q          (5.16)
+#   d_t(phib C)   + div(phib v C)   = D_C  div(phib grad C)  - gamma delta q          (5.16)
 #   d_t(delta c1) + div(delta v c1) + div(delta c1 P_phi grad c~)
-#                                   = d_c1 div(delta grad c1) + gbar delta h         (5.17), (5.21)
-#   d_t(delta c2) + div(delta v c2) = d_c2 div(delta grad c2) - gbar delta h + gbar delta q  (5.18)
+#                                   = d_c1 div(delta grad c1) + gamma delta h         (5.17), (5.21)
+#   d_t(delta c2) + div(delta v c2) = d_c2 div(delta grad c2) - gamma delta h + gamma delta q  (5.18)
 # c1, c2 live on the membrane (weight delta ~ |grad phi~| = |grad phi|/2, (2.39)), C in the
 # cytoplasm (weight phib ~ phi~ = (1 + phi)/2, (2.36)). The membrane weight |grad phi~|
 # integrates to 1 across the interface, so int delta c is the membrane's amount of c; the
@@ -26,14 +26,25 @@
 #            ~ a1 c2 + a2 c1^n/(b1 + c1^n) c2 - a3 c1 / (b2 + c1^n)
 #   q(c1, c2, C) = a4 C (1 - c1 - c2)_+ - a5 c2  ~  a4 C (1 - c1^n - c2^n)_+ - a5 c2
 # A new reaction is a term here (in every species it moves, with opposite signs) and its
-# coefficient in the constants below.
+# coefficient in `kinetics`; a new species is an entry of `species`, a sub-space of W and
+# its transport term. The scene's reaction_diffusion section takes its keys from these
+# literals (python/reaction_models.py writes them into a table at build time).
 from ufl import (Coefficient, Constant, FunctionSpace, Identity, SpatialCoordinate, TestFunctions,
                  TrialFunctions, conditional, dot, dx, grad, gt, inner, max_value,
                  min_value, outer, split, sqrt)
 
 from cellphase_ufl import DIM, P2, QDEG, constants, domain, mixed, velocity
 
-W = FunctionSpace(domain, mixed(3))           # (c1, c2, C)
+# The species in the order of the mixed space: region and default diffusion (Table 5.1);
+# the diffusion coefficient of species s is the constant D_<s>.
+species = {"c1": ("membrane", 1.0), "c2": ("membrane", 1.0), "C": ("bulk", 20.0)}
+# The kinetic constants and their defaults (Table 5.1; gamma is gamma-bar of (5.2)-(5.4)).
+kinetics = {"a1": 0.0, "a2": 160.0, "a3": 1.0, "a4": 0.333, "a5": 10.0, "b1": 20.0,
+            "b2": 0.5, "gamma": 400.0}
+# The species whose concentration pushes the membrane out, -(1/Fa) c grad phi (5.7).
+protrusion = "c1"
+
+W = FunctionSpace(domain, mixed(len(species)))  # (c1, c2, C)
 (c1, c2, C), (s1, s2, sC) = TrialFunctions(W), TestFunctions(W)
 u0 = Coefficient(W)                           # (c1^n, c2^n, C^n)
 c1_0, c2_0, C_0 = split(u0)
@@ -42,9 +53,9 @@ phi = Coefficient(V)                          # phi^{n+1}
 phi_old = Coefficient(V)                      # phi^n (the weights of d_t)
 v = velocity()                                # v^{n+1} (zero without flow)
 
-(dt, rho, D_C, d_c1, d_c2, a1, a2, a3, a4, a5, b1, b2, gbar,
+(dt, rho, D_c1, D_c2, D_C, a1, a2, a3, a4, a5, b1, b2, gamma,
  chem_point, chem_xi) = constants(
-    "dt", "rho", "D_C", "d_c1", "d_c2", "a1", "a2", "a3", "a4", "a5", "b1", "b2", "gbar",
+    "dt", "rho", "D_c1", "D_c2", "D_C", "a1", "a2", "a3", "a4", "a5", "b1", "b2", "gamma",
     "chem_point", "chem_xi")
 chem_dir = Constant(domain, shape=(DIM,))     # grad c~ of modes 1-3 (xi included)
 chem_x0 = Constant(domain, shape=(DIM,))      # source point x0 of mode 4
@@ -97,9 +108,9 @@ def transport(c, s, w, D):
     return (w * c * s / dt - w * c * dot(v, grad(s)) + D * w * inner(grad(c), grad(s)))
 
 
-a = (transport(c1, s1, wM, d_c1) + transport(c2, s2, wM, d_c2) + transport(C, sC, wB, D_C)
+a = (transport(c1, s1, wM, D_c1) + transport(c2, s2, wM, D_c2) + transport(C, sC, wB, D_C)
      - wM * c1 * inner(dot(P, grad_signal), grad(s1))) * dxq \
-    - gbar * delta * (h_lin * s1 + (q_lin - h_lin) * s2 - q_lin * sC) * dxq
+    - gamma * delta * (h_lin * s1 + (q_lin - h_lin) * s2 - q_lin * sC) * dxq
 L = (wM0 * c1_0 * s1 + wM0 * c2_0 * s2 + wB0 * C_0 * sC) / dt * dxq
 
 # Observables: a species' amount in the transport weight (what the scheme conserves) and in

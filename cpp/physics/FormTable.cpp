@@ -144,9 +144,9 @@ ConcentrationForms concentration_forms(int dim)
           space("concentration", dim, "a")};
 }
 
-GtpaseForms gtpase_forms(int dim)
+ReactionForms reaction_forms(const std::string& model, int dim)
 {
-  const std::string file = "gtpase";
+  const std::string& file = model;
   auto get = [&](const std::string& name) { return required(file, dim, name); };
   return {get("a"), get("L"), space(file, dim, "a"), get("membrane_amount"), get("bulk_amount"),
           get("membrane_amount_cell"), get("bulk_amount_cell")};

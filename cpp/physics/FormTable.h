@@ -2,6 +2,7 @@
 #pragma once
 #include "compat/Dolfinx.h"
 #include "scene/Scene.h"
+#include <string>
 
 namespace cellphase
 {
@@ -100,16 +101,17 @@ ObservableForms observable_forms(int dim);
 FlowForms flow_forms(int dim, bool inextensible = false);
 ConcentrationForms concentration_forms(int dim);
 
-/// forms/gtpase.py: the coupled step of (5.16)-(5.18) and the species' amounts.
-struct GtpaseForms
+/// forms/<model>.py of a reaction-diffusion model (gtpase: (5.16)-(5.18)): the coupled
+/// step of its species and their amounts.
+struct ReactionForms
 {
   ufcx_form* a = nullptr;
   ufcx_form* L = nullptr;
-  ufcx_space_fn space = nullptr; ///< "u0" (c1, c2, C), "phi", "phi_old", "v"
+  ufcx_space_fn space = nullptr; ///< "u0" (the species), "phi", "phi_old", "v"
   ufcx_form* membrane_amount = nullptr;      ///< int delta z (the transport weight)
   ufcx_form* bulk_amount = nullptr;          ///< int phib z
   ufcx_form* membrane_amount_cell = nullptr; ///< int |grad phi~| z
   ufcx_form* bulk_amount_cell = nullptr;     ///< int phi~ z
 };
-GtpaseForms gtpase_forms(int dim);
+ReactionForms reaction_forms(const std::string& model, int dim);
 } // namespace cellphase

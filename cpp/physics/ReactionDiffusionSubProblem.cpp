@@ -46,7 +46,10 @@ ReactionDiffusionSubProblem::ReactionDiffusionSubProblem(scene::PlanStep step,
 {
   phi_name_ = reads().front();
   const int dim = scene.domain.dim;
-  forms_ = gtpase_forms(dim);
+  forms_ = reaction_forms(rd_.model, dim);
+  for (std::size_t i = 0; i < rd_.species.size(); ++i)
+    if (rd_.species[i].name == rd_.protrusion)
+      protrusion_ = i;
   force_forms_ = interface_force_forms(dim);
   dt_ = constant(1.0);
   chem_dir_ = vector_constant({0, 0, 0}, dim);
@@ -56,19 +59,17 @@ ReactionDiffusionSubProblem::ReactionDiffusionSubProblem(scene::PlanStep step,
                      && rd_.chemotaxis->mode == scene::Chemotaxis::Mode::point_source;
   chem_point_ = constant(point ? 1.0 : 0.0);
   chem_xi_ = constant(rd_.chemotaxis ? rd_.chemotaxis->xi : 0.0);
-  const auto& k = rd_.kinetics;
   constants_ = {{"dt", dt_},
                 {"rho", constant(rd_.regularisation)},
-                {"d_c1", constant(rd_.species[0].diffusion)},
-                {"d_c2", constant(rd_.species[1].diffusion)},
-                {"D_C", constant(rd_.species[2].diffusion)},
-                {"gbar", constant(k.at("gamma"))},
                 {"chem_dir", chem_dir_},
                 {"chem_x0", chem_x0_},
                 {"chem_point", chem_point_},
                 {"chem_xi", chem_xi_}};
-  for (const char* name : {"a1", "a2", "a3", "a4", "a5", "b1", "b2"})
-    constants_[name] = constant(k.at(name));
+  // The form's own constants by name: D_<species> and its kinetics.
+  for (const auto& sp : rd_.species)
+    constants_["D_" + sp.name] = constant(sp.diffusion);
+  for (const auto& [name, value] : rd_.kinetics)
+    constants_[name] = constant(value);
 }
 
 void ReactionDiffusionSubProblem::declare(FieldRegistry& fields)
@@ -219,7 +220,8 @@ void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
     force_ = std::make_shared<Function>(Vf);
     force_->name = "protrusion_force";
     ConstantMap c{{"capillary", constant(-1.0 / *scene_.numbers.Fa)}};
-    force_L_ = compat::create_form(*force_forms_.L, {Vf}, {{"phi", phi_}, {"mu", species_[0]}}, c);
+    force_L_ = compat::create_form(*force_forms_.L, {Vf},
+                                   {{"phi", phi_}, {"mu", species_[protrusion_]}}, c);
     auto a = compat::create_form(*force_forms_.a, {Vf, Vf}, {}, {});
     force_mass_ = create_matrix(*a);
     assemble_matrix(force_mass_->mat(), *a, {});
@@ -299,7 +301,7 @@ StepTimings ReactionDiffusionSubProblem::step(double dt)
   t.factorise = solver_->set_operator(A_->mat());
   ++factorisations_;
   auto t2 = Clock::now();
-  solver_->solve(*b_, *x_, "the reaction-diffusion system (5.16)-(5.18)");
+  solver_->solve(*b_, *x_, "the reaction-diffusion system of forms/" + rd_.model + ".py");
   constraint_->backsubstitute(*x_);
   t.solve = seconds_since(t2);
   auto x = x_->array();
@@ -345,24 +347,25 @@ void ReactionDiffusionSubProblem::observe(Observation& row)
   row.extra.push_back({"rd_mass_bulk", bulk});
   row.extra.push_back({"rd_mass_cell", cell});
 
-  // The largest and smallest c1 on the membrane (|phi| < 0.9), and their angles about the
-  // cell's centre: the polarity of the pattern (front at the maximum).
+  // The largest and smallest protrusion species (c1) on the membrane (|phi| < 0.9), and
+  // their angles about the cell's centre: the polarity of the pattern (front at the maximum).
   for (const double sign : {1.0, -1.0})
   {
     const auto [value, angle] = membrane_extremum(sign, row.values.center);
-    const char* what = sign > 0 ? "max" : "min";
-    row.extra.push_back({std::string("rd_c1_") + what, value});
-    row.extra.push_back({std::string("rd_c1_") + what + "_angle_deg", angle});
+    const std::string column = "rd_" + rd_.protrusion + (sign > 0 ? "_max" : "_min");
+    row.extra.push_back({column, value});
+    row.extra.push_back({column + "_angle_deg", angle});
   }
 }
 
 std::pair<double, double>
 ReactionDiffusionSubProblem::membrane_extremum(double sign, const std::array<double, 3>& centre) const
 {
-  const auto x = species_[0]->function_space()->tabulate_dof_coordinates(false);
-  auto c1 = species_[0]->x()->array();
+  const auto& c = species_[protrusion_];
+  const auto x = c->function_space()->tabulate_dof_coordinates(false);
+  auto c1 = c->x()->array();
   auto phi = phi_->x()->array();
-  const std::int32_t owned = species_[0]->function_space()->dofmap()->index_map->size_local();
+  const std::int32_t owned = c->function_space()->dofmap()->index_map->size_local();
   struct
   {
     double value;

@@ -1,8 +1,9 @@
 // Bulk-surface reaction-diffusion on the diffuse cell (thesis 2.6, chapter 5) as a
-// sub-problem: the GTPase species c1, c2 (membrane) and C (cytoplasm) of forms/gtpase.py,
-// (5.16)-(5.18), one coupled implicit step after the phase field (section 5.3, step 4),
-// with phi^{n+1} and v^{n+1}. With a flow and numbers.Fa it also writes the protrusion
-// force -(1/Fa) c1 grad phi (5.7) that the flow adds at the next step (rd.force).
+// sub-problem: the species of forms/<model>.py (gtpase: c1, c2 on the membrane and C in the
+// cytoplasm, (5.16)-(5.18)), one coupled implicit step after the phase field (section 5.3,
+// step 4), with phi^{n+1} and v^{n+1}. With a flow and numbers.Fa it also writes the
+// protrusion force -(1/Fa) c grad phi (5.7) of the model's protrusion species that the
+// flow adds at the next step (rd.force).
 #pragma once
 #include "compat/Periodic.h"
 #include "core/SubProblem.h"
@@ -40,7 +41,7 @@ private:
   void set_initial(std::size_t i, Function& c) const;
   /// grad c~ of (5.21) at time t: the chemotaxis constants of the form.
   void update_signal(double t);
-  /// The largest (sign 1) or smallest (sign -1) c1 on the membrane and its angle (degrees)
+  /// The largest (sign 1) or smallest (sign -1) protrusion species on the membrane and its angle (degrees)
   /// about `centre`.
   std::pair<double, double> membrane_extremum(double sign, const std::array<double, 3>& centre) const;
   /// rd.force <- L2 projection of -(1/Fa) c1 grad phi (5.7) onto the flow's velocity space.
@@ -50,7 +51,8 @@ private:
   const scene::ReactionDiffusion& rd_;
   MPI_Comm comm_;
   std::string phi_name_;
-  GtpaseForms forms_;
+  ReactionForms forms_;
+  std::size_t protrusion_ = 0; ///< index of the species of the protrusion force
   InterfaceForceForms force_forms_;
   ConstantMap constants_;
   std::shared_ptr<Constant> dt_, chem_dir_, chem_point_, chem_xi_, chem_x0_;

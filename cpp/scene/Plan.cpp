@@ -99,8 +99,9 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
   if (s.reaction_diffusion)
   {
     PlanStep rd{"reaction_diffusion",
-                "reaction-diffusion module (" + s.reaction_diffusion->model
-                    + ", 5.16-5.18" + (s.reaction_diffusion->chemotaxis ? ", 5.21" : "") + ")",
+                "reaction-diffusion module (forms/" + s.reaction_diffusion->model + ".py"
+                    + (s.reaction_diffusion->model == "gtpase" ? ", 5.16-5.18" : "")
+                    + (s.reaction_diffusion->chemotaxis ? ", 5.21" : "") + ")",
                 {state_field(s, groups.front(), "phi")}, species_fields(s)};
     if (s.flow)
       rd.reads.push_back("flow.v");

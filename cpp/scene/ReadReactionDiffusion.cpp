@@ -5,6 +5,7 @@
 #include "scene/MeshDomain.h"
 #include "scene/Plan.h"
 #include "scene/Sections.h"
+#include "reaction_models.h"
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -15,18 +16,14 @@ using namespace yaml;
 
 namespace
 {
-struct SpeciesDefault
+/// The models of the form files (python/reaction_models.py), by name.
+const generated::ReactionModel* find_model(const std::string& name)
 {
-  const char* name;
-  bool membrane;
-  double diffusion; ///< Table 5.1
-};
-/// The species of forms/gtpase.py in the order of its mixed space.
-const std::vector<SpeciesDefault> gtpase_species{{"c1", true, 1}, {"c2", true, 1}, {"C", false, 20}};
-/// Table 5.1 (gamma is gbar of (5.2)-(5.4)).
-const std::vector<std::pair<const char*, double>> gtpase_kinetics{
-    {"a1", 0}, {"a2", 160}, {"a3", 1}, {"a4", 0.333}, {"a5", 10}, {"b1", 20}, {"b2", 0.5},
-    {"gamma", 400}};
+  for (std::size_t i = 0; i < generated::reaction_model_count; ++i)
+    if (name == generated::reaction_models[i].name)
+      return &generated::reaction_models[i];
+  return nullptr;
+}
 
 SpeciesInitial read_initial(const Section& sp, const std::string& name)
 {
@@ -143,7 +140,14 @@ void read_reaction_diffusion(const Section& top, Scene& s)
   rd.allow_only({"model", "species", "kinetics", "regularisation", "seed", "frozen_until",
                  "chemotaxis"});
   ReactionDiffusion r;
-  r.model = rd.choice<std::string>("model", "gtpase", {{"gtpase", "gtpase"}});
+  std::vector<std::string> models;
+  for (std::size_t i = 0; i < generated::reaction_model_count; ++i)
+    models.push_back(generated::reaction_models[i].name);
+  r.model = rd.string("model", models.front());
+  const generated::ReactionModel* model = find_model(r.model);
+  if (!model)
+    rd.fail("model", "\"" + r.model + "\" is not a reaction-diffusion model; the form files "
+                     "declare " + join(models) + " (forms/<model>.py)");
   if (cell_groups(s).size() != 1)
     rd.fail("acts on the phase field of one cell; the scene has "
             + std::to_string(cell_groups(s).size()) + " phase fields");
@@ -153,14 +157,15 @@ void read_reaction_diffusion(const Section& top, Scene& s)
 
   const Section species = rd.section("species");
   std::vector<std::string> names;
-  for (const auto& d : gtpase_species)
-    names.push_back(d.name);
+  for (std::size_t i = 0; i < model->species_count; ++i)
+    names.push_back(model->species[i].name);
   for (const auto& key : species.keys())
     if (std::find(names.begin(), names.end(), key) == names.end())
       species.fail(key, "is not a species of model " + r.model + " (forms/" + r.model
                             + ".py); its species are " + join(names));
-  for (const auto& d : gtpase_species)
+  for (std::size_t i = 0; i < model->species_count; ++i)
   {
+    const generated::ReactionSpecies& d = model->species[i];
     const Section sp = species.section(d.name);
     sp.allow_only({"region", "diffusion", "initial"});
     Species x;
@@ -177,23 +182,25 @@ void read_reaction_diffusion(const Section& top, Scene& s)
         sp.fail("region", std::string(d.name) + " lives in the " + region + " in forms/"
                               + r.model + ".py (weight "
                               + (d.membrane ? "|grad phi~|" : "phi~")
-                              + "); another region needs another form file");
+                              + "); another region is an edit of its `species`");
     }
     x.diffusion = sp.number("diffusion", d.diffusion, non_negative());
     x.initial = read_initial(sp, d.name);
     r.species.push_back(x);
   }
+  r.protrusion = model->protrusion;
 
   const Section k = rd.section("kinetics");
   std::vector<std::string> kin;
-  for (const auto& [name, value] : gtpase_kinetics)
-    kin.push_back(name);
+  for (std::size_t i = 0; i < model->kinetics_count; ++i)
+    kin.push_back(model->kinetics[i].name);
   k.allow_only(kin);
-  for (const auto& [name, value] : gtpase_kinetics)
-    r.kinetics[name] = k.number(name, value, non_negative());
-  if (r.kinetics["b1"] <= 0 || r.kinetics["b2"] <= 0)
-    k.fail(r.kinetics["b1"] <= 0 ? "b1" : "b2",
-           "must be > 0 (the saturation c1/(b + c1) of (5.5) divides by it)");
+  for (std::size_t i = 0; i < model->kinetics_count; ++i)
+    r.kinetics[model->kinetics[i].name] = k.number(model->kinetics[i].name,
+                                                   model->kinetics[i].value, non_negative());
+  for (const char* b : {"b1", "b2"}) // gtpase: the saturation c1/(b + c1) of (5.5)
+    if (r.kinetics.count(b) && r.kinetics[b] <= 0)
+      k.fail(b, "must be > 0 (the saturation c1/(b + c1) of (5.5) divides by it)");
 
   r.regularisation = rd.number("regularisation", r.regularisation, open(0, 1));
   r.seed = std::uint64_t(rd.integer("seed", 1, closed(0, 2147483647)));

@@ -252,7 +252,8 @@ struct SpeciesInitial
   std::optional<std::array<double, 2>> random; ///< [low, high]
 };
 
-/// One species of a reaction-diffusion model: its region is fixed by the model's form file.
+/// One species of a reaction-diffusion model: its region is fixed by the model's form file
+/// (the literal `species` of forms/<model>.py).
 struct Species
 {
   std::string name;        ///< as in the form file: c1, c2, C
@@ -278,7 +279,9 @@ struct ReactionDiffusion
 {
   std::string model = "gtpase";
   std::vector<Species> species;            ///< in the order of the form's mixed space
-  std::map<std::string, double> kinetics;  ///< a1..a5, b1, b2, gamma (gbar of 5.2-5.4)
+  /// The form's other constants by name (gtpase: a1..a5, b1, b2, gamma of Table 5.1).
+  std::map<std::string, double> kinetics;
+  std::string protrusion;                  ///< species of the protrusion force (5.7)
   double regularisation = 1e-6;            ///< rho of the weights (forms/gtpase.py)
   std::uint64_t seed = 1;                  ///< random initial values and turns
   /// The shape and the flow stay frozen until this time (the pre-polarisation of 5.4.1).
