@@ -134,6 +134,17 @@ Chemotaxis read_chemotaxis(const Section& top, const Scene& s)
 
 void read_reaction_diffusion(const Section& top, Scene& s)
 {
+  if (s.numbers.Fa && !(s.flow && top.has("reaction_diffusion")))
+  {
+    // Fa scales the protrusion force of the species on the flow: without both it would
+    // be silently unused.
+    const std::string why = std::string("sets the protrusion force -(1/Fa) c1 grad phi (5.7) of "
+                                        "reaction_diffusion on the flow; this scene has no ")
+                            + (s.flow ? "reaction_diffusion section" : "flow");
+    if (top.has("units"))
+      top.section("units").fail("protrusion_coefficient", why);
+    top.section("numbers").fail("Fa", why);
+  }
   if (!top.has("reaction_diffusion"))
     return;
   const Section rd = top.section("reaction_diffusion");

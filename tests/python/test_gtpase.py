@@ -255,3 +255,14 @@ def test_two_ranks_agree_with_one_with_random_initial_data(tmp_path):
     # for, differ most (1.4e-9 measured); the fields and amounts by ~1e-13.
     assert worst["rd_mass"] < 1e-12 and worst["rd_mass_membrane"] < 1e-10
     assert worst[key] < 1e-7
+
+
+def test_fa_without_the_species_or_the_flow_is_refused(tmp_path):
+    # numbers.Fa scales the protrusion force of reaction_diffusion on the flow: a scene
+    # without one of them would not use it.
+    for drop in ["flow", "reaction_diffusion"]:
+        scene = cell_scene(flow=True)
+        del scene[drop]
+        proc = check(scene, tmp_path)
+        assert proc.returncode == 2 and "numbers.Fa" in proc.stderr, proc.stderr
+        assert ("no flow" if drop == "flow" else "no reaction_diffusion") in proc.stderr

@@ -151,12 +151,11 @@ def run(args):
     return path, run_dir, proc.returncode, proc.stdout, proc.stderr
 
 
-def test_mutated_scenes_run_or_stop_cleanly(tmp_path):
-    require_exe()
-    rng = random.Random(20261202)
-    scenes = [mutate(rng, rng.choice(bases())) for _ in range(100)]
+def run_all(scenes, workdir):
+    """Run the scenes two at a time; every one must finish, be refused with a message, or
+    stop numerically with readable output. Returns the counts of each outcome."""
     with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
-        results = list(pool.map(run, [(i, s, tmp_path) for i, s in enumerate(scenes)]))
+        results = list(pool.map(run, [(i, s, workdir) for i, s in enumerate(scenes)]))
     outcome = {0: 0, 2: 0, 3: 0, "large": 0}
     for path, run_dir, code, out, err in results:
         name = path.name
@@ -176,5 +175,71 @@ def test_mutated_scenes_run_or_stop_cleanly(tmp_path):
             assert list(cellphase_results.read_fields(run_dir)), name
     print(f"finished {outcome[0]}, refused {outcome[2]}, numerical failure {outcome[3]}, "
           f"checked only (over {MAX_DOFS:g} dofs) {outcome['large']}")
+    return outcome
+
+
+def test_mutated_scenes_run_or_stop_cleanly(tmp_path):
+    require_exe()
+    rng = random.Random(20261202)
+    scenes = [mutate(rng, rng.choice(bases())) for _ in range(100)]
+    outcome = run_all(scenes, tmp_path)
     # The mutations exercise both sides: runs that go through and scenes that are refused.
     assert outcome[0] >= 15 and outcome[2] >= 15, outcome
+
+
+def gtpase_base():
+    """The motile GTPase cell of chapter 5 on a coarse mesh (issue 20)."""
+    return {
+        "domain": {"lower": [-2, -2], "upper": [2, 2], "resolution": [8, 8]},
+        "cells": [{"name": "cell", "shape": "circle", "center": [0, 0], "radius": 1}],
+        "phase_field": {"model": "helfrich_lagrange", "surface_tension": True, "mobility": 0.066},
+        "numbers": {"Re": 1e-3, "Be": 6.6, "Ca": 0.264, "Fa": 0.05},
+        "flow": {"equations": "navier_stokes"},
+        "reaction_diffusion": {
+            "species": {"c1": {"initial": {"value": 0.1758, "where": "x > 0"}},
+                        "c2": {"initial": {"random": [0.2, 0.23]}},
+                        "C": {"diffusion": 20, "initial": 9.25}},
+            "kinetics": {"a2": 160, "gamma": 400},
+            "chemotaxis": {"mode": "rotating", "omega": 1}},
+        "numerics": {"epsilon": 0.2, "dt": 1e-3, "end_time": 2e-3,
+                     "mesh": {"remesh_every": 1, "points_across_interface": 3}},
+    }
+
+
+RD_MUTATIONS = [
+    ("species", "c1", "initial", {"random": [0.3, 0.1]}),
+    ("species", "c1", "initial", {"value": 1, "where": "y >"}),
+    ("species", "C", "region", "membrane"),
+    ("species", "c2", "region", "nowhere"),
+    ("species", "c4", {"diffusion": 1}),
+    ("kinetics", "b2", 0),
+    ("kinetics", "zeta", 1),
+    ("chemotaxis", {"mode": "point_source"}),
+    ("chemotaxis", {"mode": "point_source", "x0": [5, 0]}),
+    ("chemotaxis", {"mode": "random_turns", "omega": 45, "theta": 1}),
+    ("chemotaxis", {"mode": "sinusoidal"}),
+    ("frozen_until", 1e-3),
+    ("frozen_until", -1),
+    ("regularisation", 0),
+    ("model", "notch"),
+    ("seed", "many"),
+]
+
+
+def test_mutated_gtpase_scenes_run_or_stop_cleanly(tmp_path):
+    require_exe()
+    rng = random.Random(20261203)
+    scenes = []
+    for i in range(24):
+        doc = gtpase_base()
+        if i % 3 == 2:
+            doc = mutate(rng, doc)  # the generic mutations of the other bases
+        *path, value = rng.choice(RD_MUTATIONS)
+        node = doc.get("reaction_diffusion")
+        if node is not None:
+            for key in path[:-1]:
+                node = node.setdefault(key, {})
+            node[path[-1]] = copy.deepcopy(value)
+        scenes.append(doc)
+    outcome = run_all(scenes, tmp_path)
+    assert outcome[0] >= 4 and outcome[2] >= 8, outcome
