@@ -322,6 +322,7 @@ StepTimings ReactionDiffusionSubProblem::step(double dt)
     update_force(); // c1^{n+1} grad phi^{n+1}: the next flow step's c^n grad phi^n
     t.assemble += seconds_since(t3);
   }
+  last_wall_ = seconds_since(t0);
   return t;
 }
 
@@ -346,6 +347,7 @@ void ReactionDiffusionSubProblem::observe(Observation& row)
   row.extra.push_back({"rd_mass_membrane", membrane});
   row.extra.push_back({"rd_mass_bulk", bulk});
   row.extra.push_back({"rd_mass_cell", cell});
+  row.extra.push_back({"wall_rd", last_wall_}); // this sub-problem's part of the step
 
   // The largest and smallest protrusion species (c1) on the membrane (|phi| < 0.9), and
   // their angles about the cell's centre: the polarity of the pattern (front at the maximum).

@@ -71,6 +71,7 @@ private:
   std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
   std::unique_ptr<LinearSolver> solver_;
   int factorisations_ = 0;
+  double last_wall_ = 0; ///< wall time of the last step (observables column wall_rd)
 
   // Amounts after the last step: a remesh scales the moved species back to them.
   std::vector<double> kept_;
