@@ -156,6 +156,23 @@ std::function<xt::xtensor<bool, 1>(const xt::xtensor<double, 2>&)> xmarker(const
 }
 } // namespace
 
+std::vector<std::int32_t> dofs_in_sub_space(const Space& V, const Space& sub)
+{
+  const auto& map = *V.dofmap()->index_map;
+  std::vector<std::int32_t> to(map.size_local() + map.num_ghosts());
+  const auto& topology = V.mesh()->topology();
+  const auto& cells = *topology.index_map(topology.dim());
+  const std::int32_t ncells = cells.size_local() + cells.num_ghosts();
+  for (std::int32_t c = 0; c < ncells; ++c)
+  {
+    auto vd = V.dofmap()->cell_dofs(c);
+    auto wd = sub.dofmap()->cell_dofs(c);
+    for (std::size_t k = 0; k < vd.size(); ++k)
+      to[vd[k]] = wd[k];
+  }
+  return to;
+}
+
 CollapsedSpace collapse(const Space& W, const std::vector<int>& component)
 {
   CollapsedSpace s;

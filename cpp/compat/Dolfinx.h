@@ -108,6 +108,10 @@ struct CollapsedSpace
 };
 CollapsedSpace collapse(const Space& W, const std::vector<int>& component);
 
+/// For a space V and a sub-space `sub` of a mixed space whose element is V's: the sub's dof
+/// of every local dof of V (owned and ghost), matched through the cell-local dof order.
+std::vector<std::int32_t> dofs_in_sub_space(const Space& V, const Space& sub);
+
 /// Boundary facets all of whose vertices satisfy `on`.
 std::vector<std::int32_t> boundary_facets(const Mesh& mesh, const PointMarker& on);
 

@@ -99,21 +99,9 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
 
   // V dof -> W dof for each field, matched through the cell-local dof order (the
   // sub-elements of W are V's element).
-  to_mixed_.assign(names_.size(), std::vector<std::int32_t>(V_->dofmap()->index_map->size_local()
-                                                            + V_->dofmap()->index_map->num_ghosts()));
-  const std::int32_t ncells = mesh->topology().index_map(mesh->topology().dim())->size_local()
-                              + mesh->topology().index_map(mesh->topology().dim())->num_ghosts();
+  to_mixed_.clear();
   for (std::size_t i = 0; i < names_.size(); ++i)
-  {
-    auto sub = names_.size() > 1 ? W_->sub({int(i)}) : W_;
-    for (std::int32_t c = 0; c < ncells; ++c)
-    {
-      auto vd = V_->dofmap()->cell_dofs(c);
-      auto wd = sub->dofmap()->cell_dofs(c);
-      for (std::size_t k = 0; k < vd.size(); ++k)
-        to_mixed_[i][vd[k]] = wd[k];
-    }
-  }
+    to_mixed_.push_back(compat::dofs_in_sub_space(*V_, *(names_.size() > 1 ? W_->sub({int(i)}) : W_)));
 
   u0_ = std::make_shared<Function>(W_);
   load_int_.reset(); // built again on this mesh by set_interaction

@@ -142,23 +142,10 @@ void ReactionDiffusionSubProblem::attach(FieldRegistry& fields)
   std::copy(phi_->x()->array().begin(), phi_->x()->array().end(),
             phi_old_->x()->mutable_array().begin());
 
-  // V dof -> W dof per species, through the cell-local dof order (W's sub-elements are V's).
-  to_mixed_.assign(rd_.species.size(), {});
-  const std::int32_t ncells = mesh->topology().index_map(mesh->topology().dim())->size_local()
-                              + mesh->topology().index_map(mesh->topology().dim())->num_ghosts();
-  const std::size_t nV = V->dofmap()->index_map->size_local() + V->dofmap()->index_map->num_ghosts();
+  // V dof -> W dof per species (W's sub-elements are V's element).
+  to_mixed_.clear();
   for (std::size_t i = 0; i < rd_.species.size(); ++i)
-  {
-    auto sub = W_->sub({int(i)});
-    to_mixed_[i].assign(nV, 0);
-    for (std::int32_t c = 0; c < ncells; ++c)
-    {
-      auto vd = V->dofmap()->cell_dofs(c);
-      auto wd = sub->dofmap()->cell_dofs(c);
-      for (std::size_t k = 0; k < vd.size(); ++k)
-        to_mixed_[i][vd[k]] = wd[k];
-    }
-  }
+    to_mixed_.push_back(compat::dofs_in_sub_space(*V, *W_->sub({int(i)})));
   u0_ = std::make_shared<Function>(W_);
   amount_.clear();
   amount_cell_.clear();
