@@ -97,6 +97,7 @@ FlowParameters flow_parameters(const scene::Scene& scene)
     tag_walls(scene, p);
   p.periodic = scene.domain.periodic; // their sides are open above: no wall there
   p.petsc = f.petsc;
+  p.reuse_factorisations = scene.numerics.solver == scene::Numerics::Solver::reuse;
   if (f.inextensibility)
   {
     const scene::Inextensibility& in = *f.inextensibility;

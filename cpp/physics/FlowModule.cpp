@@ -148,6 +148,8 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
   const bool symmetric = params_.Re == 0 || !params_.convection;
   solver_ = std::make_unique<LinearSolver>(comm_, "flow_", params_.petsc,
                                            symmetric ? Symmetry::symmetric : Symmetry::general);
+  if (params_.reuse_factorisations)
+    solver_->reuse_factorisations(1e-10, 30, 8);
   factorised_ = false;
 }
 

@@ -76,6 +76,7 @@ struct FlowParameters
   bool tagged_walls = false;
   std::optional<std::array<double, 3>> pressure_pin;
   std::map<std::string, std::string> petsc; ///< options under the prefix flow_
+  bool reuse_factorisations = false;        ///< numerics.solver: reuse
   Inextensibility inextensibility;
 };
 

@@ -483,9 +483,13 @@ StepTimings PhaseFieldModule::step(double dt)
   if (rebuild)
   {
     if (!solver_)
+    {
       solver_ = std::make_unique<LinearSolver>(comm_, "phasefield_", scene_.numerics.petsc,
                                                symmetrisable_ && !flowing_ ? Symmetry::symmetric
                                                                            : Symmetry::general);
+      if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
+        solver_->reuse_factorisations(1e-10, 30, 8);
+    }
     t.factorise = solver_->set_operator(A_->mat());
     ++factorisations_;
     matrix_current_ = true;

@@ -199,6 +199,8 @@ void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
   b_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
   x_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
   solver_ = std::make_unique<LinearSolver>(comm_, "rd_", scene_.numerics.petsc);
+  if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
+    solver_->reuse_factorisations(1e-10, 30, 8);
 
   if (scene::has_protrusion(scene_))
   {
@@ -286,11 +288,13 @@ StepTimings ReactionDiffusionSubProblem::step(double dt)
   constraint_->assemble_vector(*b_, *L_, a_, {});
   t.assemble = seconds_since(t0);
   t.factorise = solver_->set_operator(A_->mat());
-  ++factorisations_;
   auto t2 = Clock::now();
   solver_->solve(*b_, *x_, "the reaction-diffusion system of forms/" + rd_.model + ".py");
   constraint_->backsubstitute(*x_);
   t.solve = seconds_since(t2);
+  const auto [factorised, iterations] = solver_->take_counts();
+  factorisations_ += factorised;
+  last_iterations_ = iterations;
   auto x = x_->array();
   for (std::size_t i = 0; i < species_.size(); ++i)
   {
@@ -335,6 +339,8 @@ void ReactionDiffusionSubProblem::observe(Observation& row)
   row.extra.push_back({"rd_mass_bulk", bulk});
   row.extra.push_back({"rd_mass_cell", cell});
   row.extra.push_back({"wall_rd", last_wall_}); // this sub-problem's part of the step
+  row.extra.push_back({"rd_factorisations", double(factorisations_)});
+  row.extra.push_back({"rd_krylov_iterations", double(last_iterations_)});
 
   // The largest and smallest protrusion species (c1) on the membrane (|phi| < 0.9), and
   // their angles about the cell's centre: the polarity of the pattern (front at the maximum).

@@ -72,6 +72,7 @@ private:
   std::unique_ptr<LinearSolver> solver_;
   int factorisations_ = 0;
   double last_wall_ = 0; ///< wall time of the last step (observables column wall_rd)
+  int last_iterations_ = 0; ///< GMRES iterations of the last step (numerics.solver: reuse)
 
   // Amounts after the last step: a remesh scales the moved species back to them.
   std::vector<double> kept_;

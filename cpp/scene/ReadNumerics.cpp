@@ -53,7 +53,7 @@ void read_numerics(const Section& top, Scene& s)
                          "numerics.end_time");
   const Section n = top.section("numerics");
   n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "limits",
-                "petsc", "split"});
+                "petsc", "split", "solver"});
   Numerics& num = s.numerics;
   num.epsilon = n.number("epsilon", positive());
   num.dt = n.number("dt", positive());
@@ -95,6 +95,8 @@ void read_numerics(const Section& top, Scene& s)
   read_petsc_options(n.section("petsc"), num.petsc);
   if (n.has("split"))
     num.split = n.strings("split"); // checked against the plan in check_split
+  num.solver = n.choice("solver", num.solver,
+                        {{"direct", Numerics::Solver::direct}, {"reuse", Numerics::Solver::reuse}});
 }
 
 } // namespace cellphase::scene

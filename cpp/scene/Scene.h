@@ -153,6 +153,9 @@ struct Numerics
   std::map<std::string, std::string> petsc; ///< options without the leading '-' and prefix
   /// Order of the operator split by sub-problem name (scene/Plan.h); absent: the thesis'.
   std::optional<std::vector<std::string>> split;
+  /// Linear solves: a direct factorisation of every new matrix, or factors reused as the
+  /// preconditioner of GMRES while they serve (solve/LinearSolver, reuse_factorisations).
+  enum class Solver { direct, reuse } solver = Solver::direct;
 };
 
 struct Checkpoints

@@ -77,22 +77,63 @@ void LinearSolver::create_ksp(MPI_Comm comm)
   KSPSetFromOptions(ksp_);
 }
 
-LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
+LinearSolver::~LinearSolver()
+{
+  KSPDestroy(&ksp_);
+  KSPDestroy(&gmres_);
+}
+
+void LinearSolver::reuse_factorisations(double rtol, int max_iterations, int refactorise_after)
+{
+  if (!mumps_)
+    return; // a PETSc KSP chosen by the scene's options: left as it is
+  reuse_ = true;
+  rtol_ = rtol;
+  max_iterations_ = max_iterations;
+  refactorise_after_ = refactorise_after;
+}
+
+std::pair<int, int> LinearSolver::take_counts()
+{
+  std::pair<int, int> out{factorisations_, iterations_};
+  factorisations_ = iterations_ = 0;
+  return out;
+}
+
+void LinearSolver::factorise(Mat A)
+{
+  try
+  {
+    mumps_->factorise(A);
+  }
+  catch (const MumpsError& e)
+  {
+    throw SolverError("the linear system '" + prefix_.substr(0, prefix_.size() - 1)
+                      + "': " + e.what());
+  }
+  ++factorisations_;
+  factorised_ = A;
+  MatGetSize(A, &factor_rows_, nullptr);
+  factors_current_ = true;
+  refactorise_ = false;
+}
 
 double LinearSolver::set_operator(Mat A)
 {
   auto t0 = Clock::now();
   if (mumps_ && MumpsSolver::reads(A))
   {
-    try
+    current_ = A;
+    PetscInt rows = 0;
+    MatGetSize(A, &rows, nullptr);
+    // Reuse: keep the factors of the same matrix's earlier values (a new mesh makes a new
+    // matrix) until a solve says they no longer serve.
+    if (reuse_ && !refactorise_ && A == factorised_ && rows == factor_rows_)
     {
-      mumps_->factorise(A);
+      factors_current_ = false;
+      return seconds_since(t0);
     }
-    catch (const MumpsError& e)
-    {
-      throw SolverError("the linear system '" + prefix_.substr(0, prefix_.size() - 1)
-                        + "': " + e.what());
-    }
+    factorise(A);
     return seconds_since(t0);
   }
   if (!ksp_) // a matrix type MUMPS is not given directly: PETSc converts it
@@ -172,10 +213,80 @@ void LinearSolver::solve(const std::vector<const dolfinx::la::Vector<T>*>& bs,
     x->scatter_fwd();
 }
 
+namespace
+{
+/// The shell preconditioner: y = (factors held)^-1 x.
+PetscErrorCode apply_factors(PC pc, Vec x, Vec y)
+{
+  void* context = nullptr;
+  PCShellGetContext(pc, &context);
+  auto* mumps = static_cast<MumpsSolver*>(context);
+  PetscInt n = 0;
+  VecGetLocalSize(x, &n);
+  VecCopy(x, y);
+  PetscScalar* column = nullptr;
+  VecGetArray(y, &column);
+  double* columns[] = {column};
+  try
+  {
+    mumps->solve(columns, n);
+  }
+  catch (const MumpsError&)
+  {
+    VecRestoreArray(y, &column);
+    return PETSC_ERR_LIB;
+  }
+  VecRestoreArray(y, &column);
+  return 0;
+}
+} // namespace
+
+bool LinearSolver::solve_preconditioned(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>& x)
+{
+  if (!gmres_)
+  {
+    KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(current_)), &gmres_);
+    KSPSetType(gmres_, KSPGMRES);
+    KSPGMRESSetRestart(gmres_, max_iterations_);
+    KSPSetPCSide(gmres_, PC_RIGHT); // the true residual is the one measured
+    PC pc;
+    KSPGetPC(gmres_, &pc);
+    PCSetType(pc, PCSHELL);
+    PCShellSetContext(pc, mumps_.get());
+    PCShellSetApply(pc, apply_factors);
+  }
+  KSPSetOperators(gmres_, current_, current_);
+  KSPSetTolerances(gmres_, rtol_, 0.0, PETSC_DEFAULT, max_iterations_);
+  namespace lp = dolfinx::la::petsc;
+  lp::Vector xv(lp::create_vector_wrap(x), false);
+  lp::Vector bv(lp::create_vector_wrap(b), false);
+  const PetscErrorCode ierr = KSPSolve(gmres_, bv.vec(), xv.vec());
+  KSPConvergedReason reason;
+  KSPGetConvergedReason(gmres_, &reason);
+  PetscInt its = 0;
+  KSPGetIterationNumber(gmres_, &its);
+  iterations_ += int(its);
+  if (ierr != 0 || reason < 0)
+    return false;
+  if (its > refactorise_after_)
+    refactorise_ = true; // they still served, but not for long: new ones next time
+  x.scatter_fwd();
+  return true;
+}
+
 void LinearSolver::solve_directly(const std::vector<const dolfinx::la::Vector<T>*>& bs,
                                   const std::vector<dolfinx::la::Vector<T>*>& xs,
                                   const std::string& what)
 {
+  if (reuse_ && !factors_current_)
+  {
+    bool served = true;
+    for (std::size_t j = 0; j < bs.size() && served; ++j)
+      served = solve_preconditioned(*bs[j], *xs[j]);
+    if (served)
+      return;
+    factorise(current_); // the old factors no longer serve: the current matrix's own
+  }
   // MUMPS solves in place: each x takes the owned entries of its b first.
   std::vector<double*> columns;
   const std::int64_t n = std::int64_t(bs[0]->map()->size_local()) * bs[0]->bs();

@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cellphase
@@ -48,7 +49,20 @@ public:
   void solve(const std::vector<const dolfinx::la::Vector<T>*>& bs,
              const std::vector<dolfinx::la::Vector<T>*>& xs, const std::string& what);
 
+  /// Reuse factorisations (numerics.solver: reuse): set_operator keeps the factors of an
+  /// earlier matrix as long as they serve, and solve runs GMRES on the current matrix
+  /// preconditioned by them to relative residual `rtol`. A solve that needs more than
+  /// `max_iterations` (or fails) factorises the current matrix and solves directly; one
+  /// that needs more than `refactorise_after` factorises at the next set_operator.
+  /// Only with MUMPS called directly (the default direct solver).
+  void reuse_factorisations(double rtol, int max_iterations, int refactorise_after);
+  /// Factorisations and GMRES iterations since the last call (for the observables).
+  std::pair<int, int> take_counts();
+
 private:
+  /// GMRES on A_ preconditioned by the factors held; false if it did not reach rtol.
+  bool solve_preconditioned(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>& x);
+  void factorise(Mat A);
   void create_ksp(MPI_Comm comm);
   void solve_directly(const std::vector<const dolfinx::la::Vector<T>*>& bs,
                       const std::vector<dolfinx::la::Vector<T>*>& xs, const std::string& what);
@@ -58,5 +72,16 @@ private:
   std::unique_ptr<MumpsSolver> mumps_;         ///< or MUMPS, called directly
   std::string prefix_;
   Symmetry symmetry_;
+  // Reused factorisations
+  bool reuse_ = false;
+  double rtol_ = 1e-10;
+  int max_iterations_ = 30, refactorise_after_ = 8;
+  Mat current_ = nullptr;      ///< the operator of the next solves
+  Mat factorised_ = nullptr;   ///< the matrix (object) whose values were factorised last
+  bool factors_current_ = false; ///< the factors are those of current_'s present values
+  bool refactorise_ = true;    ///< factorise at the next set_operator
+  PetscInt factor_rows_ = -1;  ///< global rows of the factorised matrix
+  KSP gmres_ = nullptr;        ///< GMRES with the factors as a shell preconditioner
+  int factorisations_ = 0, iterations_ = 0;
 };
 } // namespace cellphase
