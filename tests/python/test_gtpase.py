@@ -6,7 +6,11 @@ import csv
 import math
 import re
 import subprocess
+import sys
+from pathlib import Path
 
+import matplotlib
+import matplotlib.image
 import pytest
 import yaml
 
@@ -292,3 +296,35 @@ def test_reused_factorisations_give_the_direct_solves_observables(tmp_path):
           f"{len(iterations)} steps, GMRES iterations per step {iterations}")
     assert reuse["rd_factorisations"][-1] < direct["rd_factorisations"][-1]
     assert max(iterations) <= 30
+
+
+def test_a_point_source_draws_the_front_towards_it(tmp_path):
+    # Mode 4 of section 5.4.3: grad c~ = -xi (x - x0)/|x - x0| with x0 outside the domain,
+    # on the left of the frozen circle: the c1 maximum turns to face it (angle 180).
+    scene = cell_scene(end_time=0.3)
+    scene["reaction_diffusion"]["species"] = {"c1": {"initial": 0.1758},
+                                              "c2": {"initial": 0.2186}, "C": {"initial": 9.25}}
+    scene["reaction_diffusion"]["chemotaxis"] = {"mode": "point_source", "x0": [-6, 0]}
+    c = run_scene(scene, tmp_path)
+    angle = c["rd_c1_max_angle_deg"][-1]
+    print(f"t = {c['time'][-1]}: c1 max at {angle:.1f} deg, min at "
+          f"{c['rd_c1_min_angle_deg'][-1]:.1f} deg")
+    assert abs(angle) > 170
+    assert abs(c["rd_c1_min_angle_deg"][-1]) < 10
+
+
+def test_the_demo_plot_draws_the_fields_and_observables(tmp_path):
+    # demos/gtpase-motile-cell/plot_cell.py reads the run with python/cellphase_results.py
+    # (XDMF + HDF5) and draws the rows of Fig. 5.4 and the observables with matplotlib.
+    scene = cell_scene(dt=1e-3, end_time=0.004, frozen=False, flow=True)
+    scene["output"] = {"every": 2, "fields": ["phi", "c1", "c2", "C", "v"]}
+    run_scene(scene, tmp_path)
+    out = tmp_path / "out"
+    script = Path(__file__).resolve().parents[2] / "demos" / "gtpase-motile-cell" / "plot_cell.py"
+    proc = subprocess.run([sys.executable, str(script), str(out), "--times", "0", "0.004"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    for name in ["fig-5-4.png", "observables.png"]:
+        image = matplotlib.image.imread(out / name)
+        assert image.shape[0] > 300 and image.shape[1] > 300
+        assert image[..., :3].std() > 0.05  # not a blank canvas
