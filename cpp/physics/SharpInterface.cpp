@@ -213,16 +213,22 @@ SharpMeasures sharp_measures(const Function& phi, const Function* mu, double H0,
       m.bending += 0.5 * (kappa - H0) * (kappa - H0) * size;
     };
     const int subcells = dim == 2 ? 4 : 8;
+    // One sub-simplex s of the table: its nodal values (kept off zero) and points, and its
+    // part of the enclosed measure.
+    auto gather = [&](const auto& table, int s, auto& v, auto& q)
+    {
+      for (std::size_t i = 0; i < v.size(); ++i)
+        v[i] = k.p[table[s][i]], q[i] = k.point[table[s][i]];
+      separate(v);
+      m.inside += positive_fraction(v) * k.measure / subcells;
+    };
     for (int s = 0; s < subcells; ++s)
     {
       if (dim == 2)
       {
         std::array<double, 3> v;
         std::array<Vec, 3> q;
-        for (int i = 0; i < 3; ++i)
-          v[i] = k.p[sub_2d[s][i]], q[i] = k.point[sub_2d[s][i]];
-        separate(v);
-        m.inside += positive_fraction(v) * k.measure / 4;
+        gather(sub_2d, s, v, q);
         std::vector<Vec> cut;
         for (int i = 0; i < 3; ++i)
           for (int j = i + 1; j < 3; ++j)
@@ -234,10 +240,7 @@ SharpMeasures sharp_measures(const Function& phi, const Function* mu, double H0,
       }
       std::array<double, 4> v;
       std::array<Vec, 4> q;
-      for (int i = 0; i < 4; ++i)
-        v[i] = k.p[sub_3d[s][i]], q[i] = k.point[sub_3d[s][i]];
-      separate(v);
-      m.inside += positive_fraction(v) * k.measure / 8;
+      gather(sub_3d, s, v, q);
       // The zero set: a triangle (one vertex apart) or a quadrilateral (two and two),
       // its corners on the edges whose ends differ in sign, in cyclic order.
       std::vector<int> plus, minus;
