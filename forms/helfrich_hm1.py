@@ -63,3 +63,15 @@ load_int = In_inv * (dB_of(phi0, eps) * w_sum
                      + interaction_dw(phi0, eps, r1, r2, a1, a2, a3) * B_sum) * zeta * dxq
 
 forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int]
+
+# The orientation field of an active polar gel in phi# (6.15): dE_P/dphi of (6.4),
+# (1/Pa) (-(c1/2) |P|^2 - beta div P) with P = P^{n+1} (section 6.3, step 3; (6.15) prints
+# +c1/2, but the derivative of -(c1/2) |P|^2 phi in (6.4) and the scheme of step 3 have -).
+# An explicit source in the equation of w = phi#, like load_int.
+from ufl import div  # noqa: E402
+from cellphase_ufl import P2vec  # noqa: E402
+P_polar = Coefficient(FunctionSpace(domain, P2vec))
+Pa_inv, polar_c1, polar_beta = constants("Pa_inv", "polar_c1", "polar_beta")
+load_polar = Pa_inv * (-polar_c1 / 2 * inner(P_polar, P_polar) - polar_beta * div(P_polar)) \
+    * zeta * dxq
+forms.append(load_polar)

@@ -3,6 +3,7 @@
 #include "physics/InteractionSubProblem.h"
 #include "physics/MembraneSubProblems.h"
 #include "physics/PhaseFieldSubProblem.h"
+#include "physics/PolarGelSubProblem.h"
 #include "physics/ReactionDiffusionSubProblem.h"
 #include <algorithm>
 #include <stdexcept>
@@ -32,6 +33,8 @@ std::vector<std::unique_ptr<SubProblem>> build_sub_problems(const scene::Scene& 
       out.push_back(std::make_unique<MembraneUnionSubProblem>(step, phis));
     else if (step.name == "reaction_diffusion")
       out.push_back(std::make_unique<ReactionDiffusionSubProblem>(step, scene, comm));
+    else if (step.name == "polar_gel")
+      out.push_back(std::make_unique<PolarGelSubProblem>(step, scene, comm));
     else if (step.name == "concentration")
       out.push_back(std::make_unique<ConcentrationSubProblem>(step, scene, comm));
     else

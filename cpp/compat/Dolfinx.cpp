@@ -126,7 +126,9 @@ void interpolate(Function& u, const PointFunction& f)
 
 void interpolate_vector(Function& u, const VectorPointFunction& f)
 {
-  const std::size_t bs = u.function_space()->dofmap()->index_map_bs();
+  // The value size, not the dofmap block size: a vector sub-function of a mixed space
+  // has an unblocked dofmap.
+  const std::size_t bs = u.function_space()->element()->value_size();
   u.interpolate(
       [&f, bs](const xt::xtensor<double, 2>& x) -> xt::xarray<T>
       {
@@ -158,8 +160,12 @@ std::function<xt::xtensor<bool, 1>(const xt::xtensor<double, 2>&)> xmarker(const
 
 std::vector<std::int32_t> dofs_in_sub_space(const Space& V, const Space& sub)
 {
+  // Both sides unrolled by their block size: a vector V (bs = dim) and the vector
+  // sub-element of a mixed space (bs 1, components interleaved per node) list a cell's
+  // dofs in the same order.
   const auto& map = *V.dofmap()->index_map;
-  std::vector<std::int32_t> to(map.size_local() + map.num_ghosts());
+  const int bs = V.dofmap()->bs(), sub_bs = sub.dofmap()->bs();
+  std::vector<std::int32_t> to(std::size_t(map.size_local() + map.num_ghosts()) * bs);
   const auto& topology = V.mesh()->topology();
   const auto& cells = *topology.index_map(topology.dim());
   const std::int32_t ncells = cells.size_local() + cells.num_ghosts();
@@ -167,8 +173,8 @@ std::vector<std::int32_t> dofs_in_sub_space(const Space& V, const Space& sub)
   {
     auto vd = V.dofmap()->cell_dofs(c);
     auto wd = sub.dofmap()->cell_dofs(c);
-    for (std::size_t k = 0; k < vd.size(); ++k)
-      to[vd[k]] = wd[k];
+    for (std::size_t k = 0; k < vd.size() * bs; ++k)
+      to[vd[k / bs] * bs + k % bs] = wd[k / sub_bs] * sub_bs + std::int32_t(k % sub_bs);
   }
   return to;
 }

@@ -109,7 +109,8 @@ struct CollapsedSpace
 CollapsedSpace collapse(const Space& W, const std::vector<int>& component);
 
 /// For a space V and a sub-space `sub` of a mixed space whose element is V's: the sub's dof
-/// of every local dof of V (owned and ghost), matched through the cell-local dof order.
+/// of every local dof of V (owned and ghost), matched through the cell-local dof order;
+/// for a vector V, per component (the index of x()'s array, block * bs + component).
 std::vector<std::int32_t> dofs_in_sub_space(const Space& V, const Space& sub);
 
 /// Boundary facets all of whose vertices satisfy `on`.

@@ -74,6 +74,7 @@ ModelForms model_forms(scene::Model model, int dim)
   f.load_v = optional(file, dim, "load_v");
   f.load_a = optional(file, dim, "load_a");
   f.load_int = optional(file, dim, "load_int");
+  f.load_polar = optional(file, dim, "load_polar");
   // (2.27) is the multiplier of allen_cahn_volume only; plain Allen-Cahn has none.
   if (model == scene::Model::allen_cahn || model == scene::Model::allen_cahn_volume)
     f.dW_integral = required(file, dim, "dW_integral");
@@ -150,6 +151,14 @@ ReactionForms reaction_forms(const std::string& model, int dim)
   auto get = [&](const std::string& name) { return required(file, dim, name); };
   return {get("a"), get("L"), space(file, dim, "a"), get("membrane_amount"), get("bulk_amount"),
           get("membrane_amount_cell"), get("bulk_amount_cell")};
+}
+
+PolarGelForms polar_gel_forms(int dim)
+{
+  auto get = [&](const std::string& name) { return required("polar_gel", dim, name); };
+  return {get("a"),           get("L"),      space("polar_gel", dim, "a"),
+          get("L_sharp"),     get("force_L"), get("energy"),
+          get("dissipation"), {get("P_cell_0"), get("P_cell_1")}};
 }
 
 InterfaceForceForms interface_force_forms(int dim)

@@ -28,6 +28,8 @@ struct ModelForms
   ufcx_form* load_a = nullptr;       ///< penalties, evaluated at t^{n+1} (Helfrich models)
   /// Explicit interaction source of (7.11) (helfrich_hm1; coefficients u0, w_sum, B_sum)
   ufcx_form* load_int = nullptr;
+  /// Explicit orientation-field source of (6.15) (helfrich_hm1; coefficients P_polar, u0)
+  ufcx_form* load_polar = nullptr;
 };
 
 /// Functionals of forms/observables.py on the standalone P2 fields phi and mu.
@@ -114,4 +116,18 @@ struct ReactionForms
   ufcx_form* bulk_amount_cell = nullptr;     ///< int phi~ z
 };
 ReactionForms reaction_forms(const std::string& model, int dim);
+
+/// forms/polar_gel.py: the orientation field of an active polar gel (6.16)-(6.17).
+struct PolarGelForms
+{
+  ufcx_form* a = nullptr;       ///< the coupled step of (P#, P)
+  ufcx_form* L = nullptr;
+  ufcx_space_fn space = nullptr; ///< "u0" (P#, P), "phi", "v", "Pi" (vector P2)
+  ufcx_form* L_sharp = nullptr; ///< P# of a given P (with the vector P2 mass matrix)
+  ufcx_form* force_L = nullptr; ///< the P terms of the momentum equation (6.13)
+  ufcx_form* energy = nullptr;  ///< (6.4)
+  ufcx_form* dissipation = nullptr; ///< (1/kappa) int |P#|^2 of (6.10)
+  std::array<ufcx_form*, 2> P_cell{nullptr, nullptr}; ///< int phi~ P_i
+};
+PolarGelForms polar_gel_forms(int dim);
 } // namespace cellphase

@@ -104,7 +104,7 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
     to_mixed_.push_back(compat::dofs_in_sub_space(*V_, *(names_.size() > 1 ? W_->sub({int(i)}) : W_)));
 
   u0_ = std::make_shared<Function>(W_);
-  load_int_.reset(); // built again on this mesh by set_interaction
+  sources_.clear(); // built again on this mesh by set_interaction, set_orientation
   dE_.reset();
   velocity_.reset();
   flowing_ = false;
@@ -191,9 +191,23 @@ void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
                            + " has no interaction term");
   ConstantMap constants = constants_;
   constants.insert(parameters.begin(), parameters.end());
-  load_int_ = compat::create_form(*forms_.load_int, {W_},
-                                  {{"u0", u0_}, {"w_sum", w_sum}, {"B_sum", B_sum}}, constants);
-  int_b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+  sources_.push_back(compat::create_form(*forms_.load_int, {W_},
+                                         {{"u0", u0_}, {"w_sum", w_sum}, {"B_sum", B_sum}},
+                                         constants));
+  source_b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+}
+
+void PhaseFieldModule::set_orientation(std::shared_ptr<const Function> P,
+                                       const ConstantMap& parameters)
+{
+  if (!forms_.load_polar)
+    throw std::logic_error(std::string("model ") + scene::to_string(scene_.phase_field.model)
+                           + " has no orientation-field term");
+  ConstantMap constants = constants_;
+  constants.insert(parameters.begin(), parameters.end());
+  sources_.push_back(compat::create_form(*forms_.load_polar, {W_},
+                                         {{"u0", u0_}, {"P_polar", P}}, constants));
+  source_b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
 }
 
 void PhaseFieldModule::set_velocity(std::shared_ptr<const Function> v)
@@ -351,12 +365,12 @@ void PhaseFieldModule::assemble_right_hand_sides(std::vector<const la::Vector<T>
                                     periodic_->assemble_local(*load->b, *load->form);
                                 });
   periodic_->assemble_local(*b_, *L_, lifting_.get());
-  if (load_int_)
+  for (const auto& source : sources_)
   {
-    // Explicit in phi^n: added to the step's right-hand side before the ghost exchange.
-    periodic_->assemble_local(*int_b_, *load_int_);
+    // Explicit: added to the step's right-hand side before the ghost exchange.
+    periodic_->assemble_local(*source_b_, *source);
     auto b = b_->mutable_array();
-    auto extra = int_b_->array();
+    auto extra = source_b_->array();
     for (std::size_t i = 0; i < b.size(); ++i)
       b[i] += extra[i];
   }

@@ -55,6 +55,10 @@ public:
   /// Call after every attach.
   void set_interaction(std::shared_ptr<const Function> w_sum, std::shared_ptr<const Function> B_sum,
                        const ConstantMap& parameters);
+  /// The orientation field's part of phi# (6.15), forms/helfrich_hm1.py's load_polar with
+  /// P (vector P2 on this mesh, updated in place) and the constants Pa_inv, polar_c1,
+  /// polar_beta. Call after every attach.
+  void set_orientation(std::shared_ptr<const Function> P, const ConstantMap& parameters);
   /// Advance one time step of size dt.
   StepTimings step(double dt);
 
@@ -145,8 +149,9 @@ private:
   /// -A g of the Dirichlet values through the matrix last assembled (reused with it)
   std::unique_ptr<dolfinx::la::Vector<T>> lifting_;
   std::unique_ptr<LinearSolver> solver_; ///< created at the first factorisation on a mesh
-  std::shared_ptr<Form> load_int_;                ///< (7.11), null without interaction
-  std::unique_ptr<dolfinx::la::Vector<T>> int_b_; ///< its vector
+  /// Explicit sources of the step's right-hand side: (7.11), (6.15); none by default.
+  std::vector<std::shared_ptr<Form>> sources_;
+  std::unique_ptr<dolfinx::la::Vector<T>> source_b_; ///< their vector
   bool matrix_current_ = false; ///< stabilised scheme: matrix assembled and factorised
   ConstantMap constants_;
   std::shared_ptr<Constant> dt_, lam_v_, lam_a_;

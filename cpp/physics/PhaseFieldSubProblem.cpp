@@ -153,6 +153,15 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
                             {{"In_inv", c(1 / in.In)}, {"r1", c(in.r1)}, {"r2", c(in.r2)},
                              {"a1", c(in.a1)}, {"a2", c(in.a2)}, {"a3", c(in.a3)}});
   }
+  if (std::count(reads().begin(), reads().end(), "polar.P"))
+  {
+    // The orientation field's terms of phi# (6.15), with P^{n+1} of the polar step.
+    const auto& gel = *scene_.polar_gel;
+    auto c = [](double v) { return std::make_shared<const Constant>(v); };
+    module_.set_orientation(fields.get("polar.P"), {{"Pa_inv", c(1 / scene_.numbers.Pa)},
+                                                    {"polar_c1", c(gel.c1)},
+                                                    {"polar_beta", c(gel.beta)}});
+  }
 }
 
 void PhaseFieldSubProblem::publish_targets()
@@ -215,9 +224,12 @@ void PhaseFieldSubProblem::observe(Observation& row)
   last_ = v;
   if (row.phase_fields++ == 0)
   {
-    // The standard columns: this phase field's, then sums over the others (below).
+    // The standard columns: this phase field's, then sums over the others (below). The
+    // energies other sub-problems observed before it (interaction, orientation) stay.
+    const double added = row.values.total_energy, added_kinetic = row.values.total_with_kinetic;
     row.values = v;
-    row.values.total_with_kinetic = v.total_energy; // the flow adds its kinetic energy
+    row.values.total_energy += added;
+    row.values.total_with_kinetic = v.total_energy + added_kinetic; // the flow adds its kinetic energy
     row.lam_v = module_.multipliers()[0];
     row.lam_a = module_.multipliers()[1];
   }

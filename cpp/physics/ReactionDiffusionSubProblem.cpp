@@ -3,6 +3,7 @@
 #include "scene/Plan.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
+#include "util/Random.h"
 #include <algorithm>
 #include <cmath>
 #include <dolfinx/fem/assembler.h>
@@ -20,24 +21,6 @@ std::shared_ptr<Constant> vector_constant(const std::array<double, 3>& v, int di
   return std::make_shared<Constant>(std::span<const double>(v.data(), std::size_t(dim)));
 }
 
-/// splitmix64: a well-mixed 64-bit hash, so that random values depend only on the seed and
-/// what is hashed (a node's position, a turn's number), not on the partition or the order.
-std::uint64_t mix(std::uint64_t z)
-{
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-/// Uniform in [0, 1) from the seed, a stream number and a point.
-double uniform(std::uint64_t seed, std::uint64_t stream, double x, double y, double z)
-{
-  std::uint64_t h = mix(seed ^ mix(stream));
-  for (double c : {x, y, z})
-    h = mix(h ^ std::uint64_t(std::llround(c * 1e9))); // c is snapped: no last-bit noise
-  return double(h >> 11) * 0x1.0p-53;
-}
 } // namespace
 
 ReactionDiffusionSubProblem::ReactionDiffusionSubProblem(scene::PlanStep step,
@@ -99,7 +82,7 @@ void ReactionDiffusionSubProblem::set_initial(std::size_t i, Function& c) const
     const double lo = (*init.random)[0], hi = (*init.random)[1];
     const std::uint64_t seed = rd_.seed;
     compat::interpolate(c, [&](double x, double y, double z)
-                        { return lo + (hi - lo) * uniform(seed, i + 1, snap(x), snap(y), snap(z)); });
+                        { return lo + (hi - lo) * random::uniform(seed, i + 1, snap(x), snap(y), snap(z)); });
     return;
   }
   if (init.where.empty())
@@ -255,7 +238,7 @@ void ReactionDiffusionSubProblem::update_signal(double t)
     angle = ch.direction_deg * std::numbers::pi / 180;
     const std::int64_t turns = std::int64_t(std::llround(t / scene_.numerics.dt)) / ch.theta;
     for (std::int64_t j = 1; j <= turns; ++j)
-      angle += ch.omega * double(std::int64_t(mix(rd_.seed ^ mix(1000 + j)) % 3) - 1);
+      angle += ch.omega * double(std::int64_t(random::mix(rd_.seed ^ random::mix(1000 + j)) % 3) - 1);
     g = {ch.xi * std::cos(angle), ch.xi * std::sin(angle), 0};
     break;
   }

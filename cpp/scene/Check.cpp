@@ -97,6 +97,23 @@ std::string initial_text(const SpeciesInitial& i)
   return fmt(i.value) + " where " + i.where + ", else " + fmt(i.otherwise);
 }
 
+void polar_gel_report(const Scene& s, Report& r)
+{
+  const PolarGel& g = *s.polar_gel;
+  const std::string kind = g.activity > 0 ? "contractile" : g.activity < 0 ? "extensile" : "passive";
+  r.line("polar gel", "orientation field P (forms/polar_gel.py, 6.16-6.17), Pa " + fmt(s.numbers.Pa)
+                          + ", c1 " + fmt(g.c1) + ", beta " + fmt(g.beta));
+  r.line("  flow coupling", "xi " + fmt(g.xi) + ", kappa " + fmt(g.kappa) + ", active stress 1/Fa = "
+                                + fmt(g.activity) + " (" + kind + ", 6.11)");
+  r.line("  stabilisation", "S = " + fmt(g.stabilisation) + " (S (P#^{n+1} - P#^n) in (6.16))");
+  r.line("  initial P", "(" + fmt(g.direction[0]) + ", " + fmt(g.direction[1]) + ") + delta, |delta_i| <= "
+                            + fmt(g.noise)
+                            + (g.noise_length > 0 ? " on a lattice of spacing " + fmt(g.noise_length)
+                                                  : " at every node")
+                            + ", seed " + std::to_string(g.seed)
+                            + (g.inside_only ? ", times phi~ (inside the cell only)" : ""));
+}
+
 void reaction_diffusion_report(const Scene& s, Report& r)
 {
   const ReactionDiffusion& rd = *s.reaction_diffusion;
@@ -343,15 +360,17 @@ std::string check_report(const Scene& s)
   auto origin = [&](bool derived) { return derived ? "" : " (default)"; };
   const bool units = s.units.length || s.units.velocity || s.units.density || s.units.viscosity
                      || s.units.bending_rigidity || s.units.surface_tension
-                     || s.units.protrusion_coefficient;
+                     || s.units.protrusion_coefficient || s.units.frank_constant;
   if (units)
     r.line("numbers (from units)", "Re = " + fmt(n.Re) + origin(from_units.Re) + ", Ca = "
                                        + fmt(n.Ca) + origin(from_units.Ca) + ", Be = "
                                        + fmt(n.Be) + origin(from_units.Be)
-                                       + (n.Fa ? ", Fa = " + fmt(*n.Fa) : ""));
+                                       + (n.Fa ? ", Fa = " + fmt(*n.Fa) : "")
+                                       + (s.polar_gel ? ", Pa = " + fmt(n.Pa) + origin(from_units.Pa) : ""));
   else
     r.line("numbers", "Re = " + fmt(n.Re) + ", Ca = " + fmt(n.Ca) + ", Be = " + fmt(n.Be)
-                          + (n.Fa ? ", Fa = " + fmt(*n.Fa) : ""));
+                          + (n.Fa ? ", Fa = " + fmt(*n.Fa) : "")
+                          + (s.polar_gel ? ", Pa = " + fmt(n.Pa) : ""));
   if (n.time_scale_s)
     r.line("time scale", "L/V = " + fmt(*n.time_scale_s) + " s; end time "
                              + fmt(s.numerics.end_time * *n.time_scale_s) + " s");
@@ -363,6 +382,8 @@ std::string check_report(const Scene& s)
 
   if (s.reaction_diffusion)
     reaction_diffusion_report(s, r);
+  if (s.polar_gel)
+    polar_gel_report(s, r);
 
   r.out_ << "  operator split" << (s.numerics.split ? " (numerics.split)" : " (the thesis' order)")
          << ", one step:\n" << plan_text(make_plan(s));

@@ -94,6 +94,8 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
       flow.reads.push_back("membrane.c");
     if (has_protrusion(s))
       flow.reads.push_back("rd.force");
+    if (s.polar_gel)
+      flow.reads.push_back("polar.force");
     steps[flow.name] = flow;
   }
   if (s.reaction_diffusion)
@@ -113,6 +115,19 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
       if (name != rd.name)
         step.active_from = s.reaction_diffusion->frozen_until;
   }
+  if (s.polar_gel)
+  {
+    // Section 6.3: flow, orientation field (with phi^n, v^{n+1}), phase field (with P^{n+1}).
+    PlanStep polar{"polar_gel", "orientation field of the active polar gel (forms/polar_gel.py, 6.16-6.17)",
+                   {state_field(s, groups.front(), "phi")}, {"polar.P", "polar.P_sharp"}};
+    if (s.flow)
+    {
+      polar.reads.push_back("flow.v");
+      polar.writes.push_back("polar.force");
+    }
+    steps[polar.name] = polar;
+    steps.at(groups.front().step).reads.push_back("polar.P");
+  }
   if (has_concentration(s))
     steps["concentration"] = {"concentration", "membrane concentration module (3.70)",
                               {"membrane.phi_cells", "flow.v"}, {"membrane.c"}};
@@ -128,7 +143,7 @@ std::vector<std::string> default_split(const Scene& s)
 {
   std::vector<std::string> order;
   const auto steps = available_steps(s);
-  for (const char* name : {"interaction", "membrane", "flow"})
+  for (const char* name : {"interaction", "membrane", "flow", "polar_gel"})
     if (steps.count(name))
       order.push_back(name);
   for (const auto& g : cell_groups(s))

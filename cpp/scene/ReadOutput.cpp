@@ -42,6 +42,8 @@ void read_output(const Section& top, Scene& s)
   if (s.reaction_diffusion)
     for (const auto& sp : s.reaction_diffusion->species)
       allowed.push_back(sp.name); // c1, c2, C of forms/gtpase.py
+  if (s.polar_gel)
+    allowed.insert(allowed.end(), {"P", "P_sharp"}); // orientation field and its potential
   out.fields = o.strings("fields");
   const Value v = o.value("fields");
   for (std::size_t i = 0; i < out.fields.size(); ++i)

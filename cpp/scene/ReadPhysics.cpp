@@ -52,15 +52,17 @@ void read_numbers(const Section& top, Scene& s)
                       "are derived), not both");
 
   const Section n = top.section("numbers");
-  n.allow_only({"Re", "Ca", "Be", "Fa"});
+  n.allow_only({"Re", "Ca", "Be", "Fa", "Pa"});
   s.numbers.Re = n.number("Re", s.numbers.Re, non_negative());
   s.numbers.Ca = n.number("Ca", s.numbers.Ca, positive());
   s.numbers.Be = n.number("Be", s.numbers.Be, positive());
   s.numbers.Fa = n.optional_number("Fa", positive());
+  s.numbers.Pa = n.number("Pa", s.numbers.Pa, positive());
 
   const Section u = top.section("units");
   u.allow_only({"length", "velocity", "density", "viscosity", "bending_rigidity",
-                "surface_tension", "protrusion_coefficient"});
+                "surface_tension", "protrusion_coefficient", "frank_constant",
+                "activity_parameter", "rotational_viscosity"});
   PhysicalUnits& pu = s.units;
   pu.length = u.optional_number("length", positive());
   pu.velocity = u.optional_number("velocity", positive());
@@ -69,6 +71,9 @@ void read_numbers(const Section& top, Scene& s)
   pu.bending_rigidity = u.optional_number("bending_rigidity", positive());
   pu.surface_tension = u.optional_number("surface_tension", positive());
   pu.protrusion_coefficient = u.optional_number("protrusion_coefficient", positive());
+  pu.frank_constant = u.optional_number("frank_constant", positive());
+  pu.activity_parameter = u.optional_number("activity_parameter", any());
+  pu.rotational_viscosity = u.optional_number("rotational_viscosity", positive());
   if (top.has("units"))
     s.numbers = derive_numbers(pu);
 }

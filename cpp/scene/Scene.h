@@ -105,6 +105,9 @@ struct PhysicalUnits
 {
   std::optional<double> length, velocity, density, viscosity, bending_rigidity, surface_tension;
   std::optional<double> protrusion_coefficient; ///< alpha of (5.8), N/m^2
+  std::optional<double> frank_constant;         ///< k of (6.2), N: Pa = eta V L / k
+  std::optional<double> activity_parameter;     ///< zeta of (6.11), N/m^2 (sign: contractile > 0)
+  std::optional<double> rotational_viscosity;   ///< eta_rot of (6.16), Pa s
 };
 
 /// Dimensionless numbers used by the equations.
@@ -114,6 +117,8 @@ struct Numbers
   /// Active surface force number (5.8) of the protrusion force -(1/Fa) c1 grad phi (5.7);
   /// absent: no protrusion force.
   std::optional<double> Fa;
+  /// Polarisation elasticity number Pa = eta V L / k of (6.4) (polar_gel)
+  double Pa = 1;
   std::optional<double> time_scale_s; ///< L/V when units are given
 };
 
@@ -292,6 +297,30 @@ struct ReactionDiffusion
   std::optional<Chemotaxis> chemotaxis;
 };
 
+/// Orientation field of an active polar gel in the cell (chapter 6, (6.16)-(6.17)),
+/// forms/polar_gel.py; defaults of Table 6.1.
+struct PolarGel
+{
+  double activity = 1;   ///< 1/Fa of the active stress (6.11): > 0 contractile, < 0 extensile
+  double xi = 1.1;       ///< flow alignment (shape factor) of (6.16)
+  double kappa = 1.65;   ///< rotational viscosity ratio eta_rot / eta of (6.16)
+  double c1 = 5;         ///< double-well parameter of P, (6.4)
+  double beta = 0;       ///< anchoring of P along grad phi, (6.4)
+  /// S of the stabilised orientation step (forms/polar_gel.py); default (1 + |xi|)^2 /
+  /// (2 eta_min) with a flow (twice the alignment feedback), 0 without.
+  double stabilisation = 0;
+  /// P^0 = direction + delta, delta uniform in [-noise, noise] per component (6.2.5)
+  std::array<double, 3> direction{1, 0, 0};
+  double noise = 0.05;
+  /// Spacing of a lattice whose nodes draw delta (bilinear between them); 0: delta drawn
+  /// at every mesh node (the thesis).
+  double noise_length = 0;
+  /// P^0 phi~(phi^0) instead of P^0 everywhere (the thesis): without the transient in
+  /// which the double well empties the outside (see docs/scenes.md).
+  bool inside_only = false;
+  std::uint64_t seed = 1;
+};
+
 struct Scene
 {
   std::string source;                ///< file the scene came from
@@ -312,6 +341,7 @@ struct Scene
   std::optional<Flow> flow;           ///< absent: no flow module at all
   std::optional<Interaction> interaction; ///< absent: the cells do not interact
   std::optional<ReactionDiffusion> reaction_diffusion; ///< absent: no signalling species
+  std::optional<PolarGel> polar_gel;  ///< absent: no orientation field
 };
 
 const char* to_string(Model m);

@@ -41,7 +41,7 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
     throw SceneError(where + ": YAML syntax error: " + e.msg);
   }
   const std::string sections = "domain, cells, phase_field, numerics and optionally boundary, "
-                               "numbers or units, flow, interaction, reaction_diffusion, output";
+                               "numbers or units, flow, interaction, reaction_diffusion, polar_gel, output";
   if (!root.IsDefined() || root.IsNull())
     throw SceneError(source + ": the scene file is empty; expected a mapping with the sections "
                      + sections);
@@ -55,7 +55,8 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
     yaml::Origin origin{source, apply_overrides(root, overrides, source)};
     const yaml::Section top = yaml::Section::root(origin, root);
     top.allow_only({"domain", "boundary", "cells", "phase_field", "numbers", "units",
-                    "numerics", "flow", "output", "interaction", "reaction_diffusion"});
+                    "numerics", "flow", "output", "interaction", "reaction_diffusion",
+                    "polar_gel"});
     Scene s;
     s.source = source;
     s.overrides = overrides;
@@ -69,6 +70,7 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
     read_interaction(top, s);
     read_flow(top, s);
     read_reaction_diffusion(top, s);
+    read_polar_gel(top, s);
     read_output(top, s);
     check_geometry(top, s);
     check_split(top, s);

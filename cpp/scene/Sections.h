@@ -17,6 +17,8 @@ void read_flow(const yaml::Section& top, Scene& s);         ///< flow (optional)
 void read_interaction(const yaml::Section& top, Scene& s);  ///< interaction (after cells)
 /// reaction_diffusion (optional, after cells and flow)
 void read_reaction_diffusion(const yaml::Section& top, Scene& s);
+/// polar_gel (optional, after cells, flow and reaction_diffusion)
+void read_polar_gel(const yaml::Section& top, Scene& s);
 void read_output(const yaml::Section& top, Scene& s);       ///< output (after flow)
 /// numerics.petsc and flow.petsc: PETSc option names without the leading '-' and single
 /// values, passed on as text; a MUMPS control (mat_mumps_icntl_<1..60>, mat_mumps_cntl_<1..15>)

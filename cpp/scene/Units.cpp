@@ -12,6 +12,7 @@ DerivedFlags derivable_numbers(const PhysicalUnits& u)
   f.Be = u.viscosity && u.velocity && u.length && u.bending_rigidity;
   f.time_scale = u.length && u.velocity;
   f.Fa = u.viscosity && u.velocity && u.length && u.protrusion_coefficient;
+  f.Pa = u.viscosity && u.velocity && u.length && u.frank_constant;
   return f;
 }
 
@@ -29,6 +30,8 @@ Numbers derive_numbers(const PhysicalUnits& u)
            / (3 * *u.bending_rigidity);
   if (f.Fa) // (5.8)
     n.Fa = *u.viscosity * *u.velocity / (*u.protrusion_coefficient * *u.length);
+  if (f.Pa) // (6.4)
+    n.Pa = *u.viscosity * *u.velocity * *u.length / *u.frank_constant;
   if (f.time_scale)
     n.time_scale_s = *u.length / *u.velocity;
   return n;

@@ -1,0 +1,327 @@
+#include "physics/PolarGelSubProblem.h"
+#include "scene/Plan.h"
+#include "solve/Assemble.h"
+#include "util/Clock.h"
+#include "util/Random.h"
+#include <algorithm>
+#include <cmath>
+#include <dolfinx/fem/assembler.h>
+#include <stdexcept>
+
+namespace cellphase
+{
+namespace
+{
+std::shared_ptr<Constant> constant(double v) { return std::make_shared<Constant>(v); }
+
+/// A vector P2 mass-matrix solve, for the projections of P# and of the force.
+struct Projection
+{
+  std::unique_ptr<dolfinx::la::petsc::Matrix> mass;
+  std::unique_ptr<LinearSolver> solver;
+};
+
+Projection make_projection(const InterfaceForceForms& forms, std::shared_ptr<Space> V,
+                           MPI_Comm comm, const std::string& prefix)
+{
+  Projection p;
+  auto a = compat::create_form(*forms.a, {V, V}, {}, {});
+  p.mass = create_matrix(*a);
+  assemble_matrix(p.mass->mat(), *a, {});
+  p.solver = std::make_unique<LinearSolver>(comm, prefix, std::map<std::string, std::string>{},
+                                            Symmetry::positive_definite);
+  p.solver->set_operator(p.mass->mat());
+  return p;
+}
+
+void project(LinearSolver& solver, const Form& L, Function& out, const std::string& what)
+{
+  const auto& V = *out.function_space();
+  dolfinx::la::Vector<T> b(V.dofmap()->index_map, V.dofmap()->index_map_bs());
+  b.set(0.0);
+  dolfinx::fem::assemble_vector(b.mutable_array(), L);
+  b.scatter_rev(std::plus<T>());
+  solver.solve(b, *out.x(), what);
+  out.x()->scatter_fwd();
+}
+} // namespace
+
+PolarGelSubProblem::PolarGelSubProblem(scene::PlanStep step, const scene::Scene& scene,
+                                       MPI_Comm comm)
+    : SubProblem(std::move(step)), scene_(scene), gel_(*scene.polar_gel), comm_(comm)
+{
+  phi_name_ = reads().front();
+  forms_ = polar_gel_forms(scene.domain.dim);
+  mass_forms_ = interface_force_forms(scene.domain.dim);
+  dt_ = constant(1.0);
+  constants_ = {{"dt", dt_},
+                {"Pa", constant(scene.numbers.Pa)},
+                {"c1", constant(gel_.c1)},
+                {"beta", constant(gel_.beta)},
+                {"xi", constant(gel_.xi)},
+                {"kappa", constant(gel_.kappa)},
+                {"activity", constant(gel_.activity)},
+                {"S", constant(gel_.stabilisation)}};
+}
+
+void PolarGelSubProblem::declare(FieldRegistry& fields)
+{
+  fields.declare({"polar.P", "P", name(), FieldSpace::vector_p2, Transfer::interpolate, true});
+  fields.declare({"polar.P_sharp", "P_sharp", name(), FieldSpace::vector_p2,
+                  Transfer::interpolate, true});
+  if (scene_.flow)
+    fields.declare({"polar.force", "polar_force", name(), FieldSpace::other, Transfer::recompute,
+                    false});
+}
+
+void PolarGelSubProblem::set_initial(Function& P) const
+{
+  // delta at every mesh node, or at the nodes of a lattice of spacing noise_length (fitted
+  // to the period along periodic axes, so that the noise is periodic too), bilinear in
+  // between. A value depends only on the seed and a snapped position or lattice index:
+  // the same on any partition.
+  const auto& dom = scene_.domain;
+  std::array<double, 2> spacing{gel_.noise_length, gel_.noise_length};
+  std::array<std::int64_t, 2> period{0, 0}; // lattice cells per period, 0: not periodic
+  for (int a = 0; a < 2; ++a)
+    if (dom.is_periodic(a) && gel_.noise_length > 0)
+    {
+      const double length = dom.upper[a] - dom.lower[a];
+      period[a] = std::max<std::int64_t>(1, std::llround(length / gel_.noise_length));
+      spacing[a] = length / double(period[a]);
+    }
+  const std::uint64_t seed = gel_.seed;
+  auto node_value = [&](std::uint64_t component, std::int64_t i, std::int64_t j)
+  {
+    if (period[0])
+      i = ((i % period[0]) + period[0]) % period[0];
+    if (period[1])
+      j = ((j % period[1]) + period[1]) % period[1];
+    return 2 * random::uniform(seed, component, double(i), double(j), 0) - 1;
+  };
+  const auto d = gel_.direction;
+  const double noise = gel_.noise;
+  if (gel_.noise_length == 0)
+  {
+    // At every node, from its snapped coordinates (as the species' random values).
+    double extent = 0;
+    for (int a = 0; a < dom.dim; ++a)
+      extent = std::max(extent, dom.upper[a] - dom.lower[a]);
+    const double grid = 1e-12 * extent;
+    auto snap = [grid](double x) { return std::round(x / grid) * grid; };
+    compat::interpolate_vector(P, [&](double x, double y, double z)
+    {
+      auto delta = [&](std::uint64_t c)
+      { return noise * (2 * random::uniform(seed, c, snap(x), snap(y), snap(z)) - 1); };
+      return std::array<double, 3>{d[0] + delta(1), d[1] + delta(2), 0};
+    });
+  }
+  else
+    compat::interpolate_vector(P, [&](double x, double y, double)
+  {
+    const double s = (x - dom.lower[0]) / spacing[0], t = (y - dom.lower[1]) / spacing[1];
+    // Snapped, so that a node's last-bit noise between cells cannot change its lattice cell.
+    const double fs = std::floor(s + 1e-9), ft = std::floor(t + 1e-9);
+    const double u = std::clamp(s - fs, 0.0, 1.0), w = std::clamp(t - ft, 0.0, 1.0);
+    const auto i = std::int64_t(fs), j = std::int64_t(ft);
+    auto delta = [&](std::uint64_t c)
+    {
+      return noise * ((1 - u) * (1 - w) * node_value(c, i, j) + u * (1 - w) * node_value(c, i + 1, j)
+                      + (1 - u) * w * node_value(c, i, j + 1) + u * w * node_value(c, i + 1, j + 1));
+    };
+    return std::array<double, 3>{d[0] + delta(1), d[1] + delta(2), 0};
+  });
+  if (!gel_.inside_only)
+    return;
+  // P^0 phi~(phi^0): the filaments only in the cell, where the double well keeps them.
+  const auto& V = *P.function_space();
+  const auto& Vphi = *phi_->function_space();
+  auto p = P.x()->mutable_array();
+  auto phi = phi_->x()->array();
+  const auto& topology = V.mesh()->topology();
+  const auto& cells = *topology.index_map(topology.dim());
+  std::vector<char> done(p.size() / 2, 0);
+  for (std::int32_t c = 0; c < cells.size_local() + cells.num_ghosts(); ++c)
+  {
+    auto vd = V.dofmap()->cell_dofs(c);
+    auto sd = Vphi.dofmap()->cell_dofs(c);
+    for (std::size_t k = 0; k < vd.size(); ++k)
+      if (!done[vd[k]])
+      {
+        const double weight = std::clamp((1 + phi[sd[k]]) / 2, 0.0, 1.0);
+        p[2 * vd[k]] *= weight;
+        p[2 * vd[k] + 1] *= weight;
+        done[vd[k]] = 1;
+      }
+  }
+}
+
+void PolarGelSubProblem::attach(FieldRegistry& fields)
+{
+  phi_ = fields.get(phi_name_);
+  auto mesh = phi_->function_space()->mesh();
+  auto V = fields.space("", FieldSpace::vector_p2);
+  W_ = compat::create_space(forms_.space, "u0", mesh);
+  auto take = [&](const std::string& name, const std::string& label, bool& fresh)
+  {
+    auto f = fields.find(name); // moved from the last mesh or restored; null: a new run
+    fresh = !f;
+    if (!f)
+      f = std::make_shared<Function>(V);
+    else if (f->function_space() != V)
+    {
+      auto copy = std::make_shared<Function>(V);
+      copy->interpolate(*f); // same element and mesh: a copy in V's dof order
+      f = copy;
+    }
+    f->name = label;
+    fields.set(name, f);
+    return f;
+  };
+  bool fresh_P = false, fresh_sharp = false;
+  P_ = take("polar.P", "P", fresh_P);
+  P_sharp_ = take("polar.P_sharp", "P_sharp", fresh_sharp);
+  if (fresh_P)
+    set_initial(*P_);
+  if (fresh_sharp)
+    project_sharp();
+
+  sharp_to_mixed_ = compat::dofs_in_sub_space(*V, *W_->sub({0}));
+  P_to_mixed_ = compat::dofs_in_sub_space(*V, *W_->sub({1}));
+  u0_ = std::make_shared<Function>(W_);
+  const CoefficientMap coeffs{{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}};
+  energy_ = compat::create_form(*forms_.energy, {}, coeffs, constants_, mesh);
+  dissipation_ = compat::create_form(*forms_.dissipation, {}, coeffs, constants_, mesh);
+  for (int i = 0; i < 2; ++i)
+    P_cell_[i] = compat::create_form(*forms_.P_cell[i], {}, coeffs, constants_, mesh);
+  cell_weight_ = compat::create_form(*flow_forms(scene_.domain.dim).phase_weight, {},
+                                     {{"phi", phi_}}, {}, mesh);
+  a_.reset();
+  L_.reset();
+  force_.reset();
+}
+
+void PolarGelSubProblem::project_sharp()
+{
+  auto V = std::const_pointer_cast<Space>(P_->function_space());
+  auto L = compat::create_form(*forms_.L_sharp, {V}, {{"Pi", P_}, {"phi", phi_}}, constants_);
+  Projection p = make_projection(mass_forms_, V, comm_, "polar_sharp_");
+  project(*p.solver, *L, *P_sharp_, "the projection of P# (6.17)");
+}
+
+void PolarGelSubProblem::connect(FieldRegistry& fields)
+{
+  auto mesh = phi_->function_space()->mesh();
+  if (auto v = fields.find("flow.v"))
+    v_ = v;
+  else
+  {
+    auto zero = std::make_shared<Function>(fields.space("", FieldSpace::vector_p2));
+    zero->x()->set(0.0);
+    v_ = zero;
+  }
+  const CoefficientMap coeffs{{"u0", u0_}, {"phi", phi_}, {"v", v_}};
+  a_ = compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_);
+  L_ = compat::create_form(*forms_.L, {W_}, coeffs, constants_);
+  const auto box = compat::bounding_box(*mesh);
+  constraint_ = std::make_unique<PeriodicConstraint>(W_, box[0], box[1], scene_.domain.periodic);
+  A_ = std::make_unique<dolfinx::la::petsc::Matrix>(constraint_->create_matrix(*a_));
+  b_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
+  x_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
+  solver_ = std::make_unique<LinearSolver>(comm_, "polar_", scene_.numerics.petsc);
+  if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
+    solver_->reuse_factorisations(1e-10, 30, 8);
+
+  if (scene_.flow)
+  {
+    // On the flow's velocity space, so that the flow adds it to its free force directly.
+    auto Vf = std::const_pointer_cast<Space>(fields.get("flow.v")->function_space());
+    force_ = std::make_shared<Function>(Vf);
+    force_->name = "polar_force";
+    force_L_ = compat::create_form(*forms_.force_L, {Vf},
+                                   {{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}}, constants_);
+    Projection p = make_projection(mass_forms_, Vf, comm_, "polar_force_");
+    force_mass_ = std::move(p.mass);
+    force_solver_ = std::move(p.solver);
+    update_force();
+    fields.set("polar.force", force_);
+  }
+}
+
+void PolarGelSubProblem::update_force()
+{
+  project(*force_solver_, *force_L_, *force_, "the projection of the orientation force (6.13)");
+}
+
+StepTimings PolarGelSubProblem::step(double dt)
+{
+  if (!a_)
+    throw std::logic_error("polar_gel: step before connect");
+  StepTimings t;
+  auto t0 = Clock::now();
+  dt_->value[0] = dt;
+  {
+    auto u = u0_->x()->mutable_array();
+    auto ps = P_sharp_->x()->array();
+    auto p = P_->x()->array();
+    for (std::size_t d = 0; d < P_to_mixed_.size(); ++d)
+    {
+      u[sharp_to_mixed_[d]] = ps[d];
+      u[P_to_mixed_[d]] = p[d];
+    }
+  }
+  // The matrix holds v^{n+1}, phi^n and the linearisation at P^n: new every step.
+  constraint_->assemble_matrix(A_->mat(), *a_, {});
+  constraint_->assemble_vector(*b_, *L_, a_, {});
+  t.assemble = seconds_since(t0);
+  t.factorise = solver_->set_operator(A_->mat());
+  auto t2 = Clock::now();
+  solver_->solve(*b_, *x_, "the orientation field (6.16)-(6.17) of forms/polar_gel.py");
+  constraint_->backsubstitute(*x_);
+  t.solve = seconds_since(t2);
+  const auto [factorised, iterations] = solver_->take_counts();
+  factorisations_ += factorised;
+  last_iterations_ = iterations;
+  {
+    auto x = x_->array();
+    auto ps = P_sharp_->x()->mutable_array();
+    auto p = P_->x()->mutable_array();
+    for (std::size_t d = 0; d < P_to_mixed_.size(); ++d)
+    {
+      ps[d] = x[sharp_to_mixed_[d]];
+      p[d] = x[P_to_mixed_[d]];
+    }
+  }
+  if (force_)
+  {
+    auto t3 = Clock::now();
+    update_force(); // P^{n+1}, P#^{n+1}: the next flow step's P^n, P#^n
+    t.assemble += seconds_since(t3);
+  }
+  last_wall_ = seconds_since(t0);
+  return t;
+}
+
+void PolarGelSubProblem::observe(Observation& row)
+{
+  const double energy = compat::assemble_scalar(*energy_); // (6.4)
+  row.values.total_energy += energy;                        // (6.1) with E_S of the phase field
+  row.values.total_with_kinetic += energy;
+  row.extra.push_back({"polar_energy", energy});
+  row.extra.push_back({"polar_dissipation", compat::assemble_scalar(*dissipation_)});
+  // The mean orientation in the cell, int phi~ P / int phi~: its direction and order.
+  const double weight = compat::assemble_scalar(*cell_weight_);
+  const double px = compat::assemble_scalar(*P_cell_[0]) / weight;
+  const double py = compat::assemble_scalar(*P_cell_[1]) / weight;
+  row.extra.push_back({"polar_P_cell_x", px});
+  row.extra.push_back({"polar_P_cell_y", py});
+  row.extra.push_back({"wall_polar", last_wall_});
+  row.extra.push_back({"polar_factorisations", double(factorisations_)});
+  row.extra.push_back({"polar_krylov_iterations", double(last_iterations_)});
+}
+
+std::int64_t PolarGelSubProblem::num_dofs() const
+{
+  return W_ ? compat::num_global_dofs(*W_) : 0;
+}
+} // namespace cellphase

@@ -1,0 +1,75 @@
+// The orientation field of an active polar gel (thesis chapter 6) as a sub-problem: P and
+// its chemical potential P# (vector P2, forms/polar_gel.py) in one implicit step after the
+// flow (section 6.3, step 2), with phi^n and v^{n+1}. With a flow it writes the force of
+// P on the fluid, the P terms of (6.13) with the active stress (1/Fa) div(phi~ P (x) P)
+// (6.11), that the flow adds at the next step (polar.force); the phase field adds the
+// orientation terms of phi# (6.15) from polar.P.
+#pragma once
+#include "compat/Periodic.h"
+#include "core/SubProblem.h"
+#include "physics/FormTable.h"
+#include "scene/Scene.h"
+#include "solve/LinearSolver.h"
+#include <memory>
+#include <vector>
+
+namespace cellphase
+{
+class PolarGelSubProblem : public SubProblem
+{
+public:
+  PolarGelSubProblem(scene::PlanStep step, const scene::Scene& scene, MPI_Comm comm);
+
+  std::vector<std::string> attach_reads() const override { return {phi_name_}; }
+  void declare(FieldRegistry& fields) override;
+  void attach(FieldRegistry& fields) override;
+  void connect(FieldRegistry& fields) override;
+  StepTimings step(double dt) override;
+  void observe(Observation& row) override;
+  void save(CheckpointData&) const override {}
+  void restore(const CheckpointData&) override {}
+  std::int64_t num_dofs() const override;
+  int factorisations() const override { return factorisations_; }
+
+private:
+  /// P^0 = direction + delta, delta uniform in [-noise, noise] per component (6.2.5).
+  void set_initial(Function& P) const;
+  /// P# of the current P: the L2 projection of (6.17) (the flow's first step needs P#^0).
+  void project_sharp();
+  /// polar.force <- L2 projection of the P terms of (6.13) onto the flow's velocity space.
+  void update_force();
+
+  const scene::Scene& scene_;
+  const scene::PolarGel& gel_;
+  MPI_Comm comm_;
+  std::string phi_name_;
+  PolarGelForms forms_;
+  InterfaceForceForms mass_forms_; ///< the vector P2 mass matrix
+  ConstantMap constants_;
+  std::shared_ptr<Constant> dt_;
+
+  std::shared_ptr<const Function> phi_;   ///< phi^n (the phase field's, in place)
+  std::shared_ptr<Function> P_, P_sharp_; ///< standalone, in the registry
+  std::shared_ptr<Space> W_;              ///< (P#, P)
+  std::vector<std::int32_t> sharp_to_mixed_, P_to_mixed_; ///< V dof (unrolled) -> W dof
+  std::shared_ptr<Function> u0_;          ///< (P#^n, P^n)
+  std::shared_ptr<const Function> v_;     ///< the flow's v^{n+1}, or zero
+  std::shared_ptr<Form> a_, L_;
+  std::shared_ptr<Form> energy_, dissipation_;
+  std::array<std::shared_ptr<Form>, 2> P_cell_;
+  std::shared_ptr<Form> cell_weight_;     ///< int phi~
+  std::unique_ptr<PeriodicConstraint> constraint_;
+  std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
+  std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
+  std::unique_ptr<LinearSolver> solver_;
+  int factorisations_ = 0;
+  double last_wall_ = 0; ///< wall time of the last step (observables column wall_polar)
+  int last_iterations_ = 0;
+
+  // The force on the flow (with a flow)
+  std::shared_ptr<Function> force_;
+  std::shared_ptr<Form> force_L_;
+  std::unique_ptr<dolfinx::la::petsc::Matrix> force_mass_;
+  std::unique_ptr<LinearSolver> force_solver_;
+};
+} // namespace cellphase
