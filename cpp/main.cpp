@@ -41,7 +41,8 @@ A run writes into output.directory:
                     centre of mass, circularity, dofs, wall time per part of the step;
                     with several cells also per-cell columns (<cell>.volume, ...),
                     interaction_energy and overlap_max; with reaction_diffusion the
-                    species' amounts (rd_mass, ...) and the front and rear of c1
+                    species' amounts (rd_mass, ...) and the front and rear of c1;
+                    with polar_gel the orientation energy and mean (polar_energy, ...)
   fields.xdmf       the fields every output.every steps, one grid per time holding every
                     field (open in ParaView; data in fields/, where each step-<n>.xdmf
                     opens on its own); output.format: vtk writes fields.pvd instead

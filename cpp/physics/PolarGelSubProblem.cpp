@@ -101,35 +101,30 @@ void PolarGelSubProblem::set_initial(Function& P) const
   };
   const auto d = gel_.direction;
   const double noise = gel_.noise;
-  if (gel_.noise_length == 0)
+  double extent = 0;
+  for (int a = 0; a < dom.dim; ++a)
+    extent = std::max(extent, dom.upper[a] - dom.lower[a]);
+  const double grid = 1e-12 * extent;
+  auto snap = [grid](double x) { return std::round(x / grid) * grid; };
+  auto delta = [&](std::uint64_t c, double x, double y)
   {
-    // At every node, from its snapped coordinates (as the species' random values).
-    double extent = 0;
-    for (int a = 0; a < dom.dim; ++a)
-      extent = std::max(extent, dom.upper[a] - dom.lower[a]);
-    const double grid = 1e-12 * extent;
-    auto snap = [grid](double x) { return std::round(x / grid) * grid; };
-    compat::interpolate_vector(P, [&](double x, double y, double z)
-    {
-      auto delta = [&](std::uint64_t c)
-      { return noise * (2 * random::uniform(seed, c, snap(x), snap(y), snap(z)) - 1); };
-      return std::array<double, 3>{d[0] + delta(1), d[1] + delta(2), 0};
-    });
-  }
-  else
-    compat::interpolate_vector(P, [&](double x, double y, double)
-  {
+    if (gel_.noise_length == 0) // at every node, from its snapped coordinates
+      return noise * (2 * random::uniform(seed, c, snap(x), snap(y), 0) - 1);
     const double s = (x - dom.lower[0]) / spacing[0], t = (y - dom.lower[1]) / spacing[1];
     // Snapped, so that a node's last-bit noise between cells cannot change its lattice cell.
     const double fs = std::floor(s + 1e-9), ft = std::floor(t + 1e-9);
     const double u = std::clamp(s - fs, 0.0, 1.0), w = std::clamp(t - ft, 0.0, 1.0);
     const auto i = std::int64_t(fs), j = std::int64_t(ft);
-    auto delta = [&](std::uint64_t c)
-    {
-      return noise * ((1 - u) * (1 - w) * node_value(c, i, j) + u * (1 - w) * node_value(c, i + 1, j)
-                      + (1 - u) * w * node_value(c, i, j + 1) + u * w * node_value(c, i + 1, j + 1));
-    };
-    return std::array<double, 3>{d[0] + delta(1), d[1] + delta(2), 0};
+    return noise * ((1 - u) * (1 - w) * node_value(c, i, j) + u * (1 - w) * node_value(c, i + 1, j)
+                    + (1 - u) * w * node_value(c, i, j + 1) + u * w * node_value(c, i + 1, j + 1));
+  };
+  // Mirrored: R P^0(R x), R the reflection about the domain's centre line in x (Fig. 6.7).
+  const double centre = (dom.lower[0] + dom.upper[0]) / 2;
+  compat::interpolate_vector(P, [&](double x, double y, double)
+  {
+    const double xs = gel_.mirror ? snap(2 * centre - x) : x;
+    const double px = d[0] + delta(1, xs, y), py = d[1] + delta(2, xs, y);
+    return std::array<double, 3>{gel_.mirror ? -px : px, py, 0};
   });
   if (!gel_.inside_only)
     return;

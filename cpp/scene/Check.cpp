@@ -111,7 +111,8 @@ void polar_gel_report(const Scene& s, Report& r)
                             + (g.noise_length > 0 ? " on a lattice of spacing " + fmt(g.noise_length)
                                                   : " at every node")
                             + ", seed " + std::to_string(g.seed)
-                            + (g.inside_only ? ", times phi~ (inside the cell only)" : ""));
+                            + (g.inside_only ? ", times phi~ (inside the cell only)" : "")
+                            + (g.mirror ? ", mirrored about the centre line in x" : ""));
 }
 
 void reaction_diffusion_report(const Scene& s, Report& r)

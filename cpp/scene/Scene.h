@@ -318,6 +318,9 @@ struct PolarGel
   /// P^0 phi~(phi^0) instead of P^0 everywhere (the thesis): without the transient in
   /// which the double well empties the outside (see docs/scenes.md).
   bool inside_only = false;
+  /// R P^0(R x) with R the reflection about the domain's centre line in x: the mirror image
+  /// of the same perturbation (Fig. 6.7).
+  bool mirror = false;
   std::uint64_t seed = 1;
 };
 

@@ -23,7 +23,7 @@ import cellphase_results  # noqa: E402
 
 # Wall times and the round-off of the remesh volume correction are not part of the state.
 NOT_STATE = {"wall_assembly", "wall_factorise", "wall_solve", "wall_remesh", "wall_output",
-             "remesh_volume_change", "wall_flow", "wall_rd"}
+             "remesh_volume_change", "wall_flow", "wall_rd", "wall_polar"}
 STEPS = 40
 
 

@@ -1,0 +1,145 @@
+"""The active polar gel cell of thesis chapter 6 (forms/polar_gel.py, polar_gel section):
+energy law of the passive model, restart with the random initial orientation, the mirror
+image of the perturbation, the sub-problem in the plan and the refusals of bad input.
+
+The scenes are a small version of section 6.2.5: a channel periodic in x with walls at the
+bottom and top, a circle of radius 4, Table 6.1's numbers (Ca = 0.1, Be = 0.3, Pa = 1),
+epsilon = 0.3 with 3 points across the interface."""
+import copy
+import csv
+import subprocess
+
+import yaml
+
+from conftest import EXE, require_exe, run_scene
+from test_checkpoint import assert_same_observables, restart_from_shorter_run
+
+
+def gel_scene(activity=0.0, dt=0.02, end_time=0.5, **gel):
+    return {
+        "domain": {"lower": [0, 0], "upper": [24, 16], "resolution": [12, 8], "periodic": ["x"]},
+        "cells": [{"shape": "circle", "center": [12, 8], "radius": 4}],
+        "phase_field": {"model": "helfrich_hm1", "mobility": 0.025, "surface_tension": True},
+        "numbers": {"Re": 0, "Ca": 0.1, "Be": 0.3, "Pa": 1},
+        "flow": {},
+        "polar_gel": {"activity": activity, **gel},
+        "numerics": {"epsilon": 0.3, "dt": dt, "end_time": end_time,
+                     "mesh": {"points_across_interface": 3, "remesh_every": 10}},
+    }
+
+
+def test_passive_gel_dissipates_every_step_and_keeps_the_volume(tmp_path):
+    """1/Fa = 0: the energy (6.1) = Helfrich + surface + orientation (6.4) decreases every
+    step, (6.10); the H^-1 flow with conservative advection keeps int phi to round-off.
+    P starts as (1, 0) + delta everywhere (6.2.5), so the double well first empties the
+    outside: E falls from 1468 to 255 in 25 steps, by at least 6 per step."""
+    c = run_scene(gel_scene(), tmp_path)
+    E, polar = c["total_energy"], c["polar_energy"]
+    # total_energy is (6.1) without the kinetic part (Stokes): E_H + (1/Ca) E_CH + E_P
+    for e, h, ch, p in zip(E, c["helfrich_energy"], c["energy_ch"], polar):
+        assert abs(e - (h + ch / 0.1 + p)) < 1e-9 * e
+    steps = [b - a for a, b in zip(E, E[1:])]
+    assert max(steps) < 0, max(steps)  # every step dissipates
+    assert E[-1] < 0.2 * E[0]
+    assert polar[-1] < 0.05 * polar[0]  # P has left the outside
+    v0 = c["volume"][0]
+    assert max(abs(v - v0) for v in c["volume"]) < 1e-12 * v0
+    # The orientation stays along the initial direction inside the cell.
+    assert c["polar_P_cell_x"][-1] > 0.8 and abs(c["polar_P_cell_y"][-1]) < 0.01
+
+
+def test_restart_continues_the_random_orientation_bit_for_bit(tmp_path):
+    scene = gel_scene(activity=1.125, dt=0.02, end_time=0.24, initial={"seed": 5})
+    scene["numerics"]["mesh"]["remesh_every"] = 4  # P and P# are moved by two remeshes
+    scene["output"] = {"every": 0, "progress": False, "checkpoints": {"every": 6, "keep": 3}}
+    part = copy.deepcopy(scene)
+    part["numerics"]["end_time"] = 0.12
+    full, continued, log = restart_from_shorter_run(scene, part, tmp_path)
+    assert "restarting from" in log
+    with open(tmp_path / "full" / "observables.csv") as f:
+        continued = list(csv.DictReader(f))
+    assert_same_observables(full, continued)
+    # The seed matters: another gives another start.
+    other = run_scene(gel_scene(activity=1.125, end_time=0.02, initial={"seed": 6}), tmp_path)
+    assert float(full[1]["cell_velocity_x"]) != other["cell_velocity_x"][1]
+
+
+def test_mirrored_perturbation_mirrors_the_motion(tmp_path):
+    """Fig. 6.7: the mirror image R P^0(R x) of the same perturbation drives the cell the
+    other way. The base mesh's diagonals are not mirror symmetric, so the two runs agree up
+    to the discretisation (seen: 1e-3 of the speed), not to round-off."""
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    a = run_scene(gel_scene(activity=1.125, end_time=0.2), tmp_path / "a")
+    b = run_scene(gel_scene(activity=1.125, end_time=0.2, initial={"mirror": True}), tmp_path / "b")
+    va, vb = a["cell_velocity_x"][1:], b["cell_velocity_x"][1:]
+    scale = max(abs(v) for v in va)
+    assert scale > 1e-3  # the perturbation moves the cell
+    assert max(abs(x + y) for x, y in zip(va, vb)) < 0.05 * scale
+    assert max(abs(x - y) for x, y in zip(a["center_y"], b["center_y"])) < 1e-6
+    assert max(abs(x + y) for x, y in zip(a["polar_P_cell_x"], b["polar_P_cell_x"])) < 1e-3
+
+
+def check(scene, tmp_path):
+    require_exe()
+    path = tmp_path / "scene.yaml"
+    path.write_text(yaml.safe_dump(scene))
+    return subprocess.run([EXE, "check", str(path)], capture_output=True, text=True, timeout=60)
+
+
+def test_check_reports_the_gel_and_its_place_in_the_split(tmp_path):
+    proc = check(gel_scene(activity=1.125), tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    out = proc.stdout
+    assert "active stress 1/Fa = 1.125 (contractile, 6.11)" in out
+    assert "xi 1.1, kappa 1.65" in out
+    assert "Pa = 1" in out
+    # Section 6.3: flow, orientation field, phase field.
+    lines = [l.strip() for l in out.splitlines()]
+    order = [l.split(":")[0] for l in lines if l[:2] in ("1.", "2.", "3.")]
+    assert order == ["1. flow", "2. polar_gel", "3. phase_field"], order
+    assert "reads cell.phi, flow.v; writes polar.P, polar.P_sharp, polar.force" in out
+
+
+def test_units_give_pa_and_the_activity(tmp_path):
+    """Table 6.1 in SI units: Pa = eta V L / k = 1, 1/Fa = zeta L / (eta V) = 1,
+    kappa = eta_rot / eta = 1.65, Ca = 0.1, Be = 0.3."""
+    scene = gel_scene()
+    del scene["numbers"]
+    del scene["polar_gel"]["activity"]
+    scene["units"] = {"length": 1e-6, "velocity": 1e-6, "density": 1e3, "viscosity": 2e3,
+                      "surface_tension": 0.0188, "bending_rigidity": 1.26e-14,
+                      "frank_constant": 2e-9, "activity_parameter": 2e3,
+                      "rotational_viscosity": 3.3e3}
+    proc = check(scene, tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert "Pa = 1" in proc.stdout and "1/Fa = 1 (contractile" in proc.stdout
+    assert "kappa 1.65" in proc.stdout
+    assert "Ca = 0.1" in proc.stdout and "Be = 0.299" in proc.stdout
+
+
+BAD = [
+    (("polar_gel", "kappa"), 0, "polar_gel.kappa"),
+    (("polar_gel", "colour"), 1, "colour"),
+    (("polar_gel", "initial", "direction"), [1, 0, 0], "polar_gel.initial.direction"),
+    (("polar_gel", "initial", "noise"), -0.1, "polar_gel.initial.noise"),
+    (("phase_field", "model"), "helfrich_lagrange", "needs helfrich_hm1"),
+    (("numbers", "Pa"), -1, "numbers.Pa"),
+]
+
+
+def test_bad_gel_input_is_refused_before_the_first_step(tmp_path):
+    for path, value, needle in BAD:
+        scene = gel_scene(activity=1.0)
+        node = scene
+        for key in path[:-1]:
+            node = node.setdefault(key, {})
+        node[path[-1]] = value
+        proc = check(scene, tmp_path)
+        assert proc.returncode != 0 and needle in proc.stderr, (path, proc.stderr)
+    # Activity acts through the flow.
+    scene = gel_scene(activity=1.0)
+    del scene["flow"]
+    proc = check(scene, tmp_path)
+    assert proc.returncode != 0 and "polar_gel.activity" in proc.stderr
+    assert "acts through the flow" in proc.stderr
