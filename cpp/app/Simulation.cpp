@@ -135,6 +135,12 @@ StepTimings Simulation::step(double dt, double time)
     solving_ = sub.get(); // names the module if its solver fails
     t += sub->step(dt);
   }
+  for (auto& sub : split_)
+    if (time + 0.5 * dt >= sub->active_from())
+    {
+      solving_ = sub.get();
+      t += sub->finish_step();
+    }
   return t;
 }
 

@@ -52,6 +52,9 @@ public:
   /// Once, after the first attach of a new run (not a restart): targets of constraints.
   virtual void start() {}
   virtual StepTimings step(double dt) = 0;
+  /// After every sub-problem of the split has stepped: refresh what the next step reads and
+  /// depends on the state of several (a force of the new fields), so that it is consistent.
+  virtual StepTimings finish_step() { return {}; }
   /// Its part of one row of observables.csv (in attach order).
   virtual void observe(Observation&) {}
   /// "" or why the state it owns is beyond the scene's limits (numerics.limits).

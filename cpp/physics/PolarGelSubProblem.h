@@ -25,6 +25,8 @@ public:
   void attach(FieldRegistry& fields) override;
   void connect(FieldRegistry& fields) override;
   StepTimings step(double dt) override;
+  /// P# and the force again from P^{n+1} and phi^{n+1} (see the .cpp).
+  StepTimings finish_step() override;
   void observe(Observation& row) override;
   void save(CheckpointData&) const override {}
   void restore(const CheckpointData&) override {}
@@ -34,7 +36,8 @@ public:
 private:
   /// P^0 = direction + delta, delta uniform in [-noise, noise] per component (6.2.5).
   void set_initial(Function& P) const;
-  /// P# of the current P: the L2 projection of (6.17) (the flow's first step needs P#^0).
+  /// P# of the current P and phi: the L2 projection of (6.17) (the flow's first step needs
+  /// P#^0; after each step it makes P# consistent with phi^{n+1}).
   void project_sharp();
   /// polar.force <- L2 projection of the P terms of (6.13) onto the flow's velocity space.
   void update_force();
@@ -69,6 +72,9 @@ private:
   // The force on the flow (with a flow)
   std::shared_ptr<Function> force_;
   std::shared_ptr<Form> force_L_;
+  std::shared_ptr<Form> sharp_L_;                 ///< (6.17) of the standalone P, phi
+  std::unique_ptr<dolfinx::la::petsc::Matrix> sharp_mass_;
+  std::unique_ptr<LinearSolver> sharp_solver_;
   std::unique_ptr<dolfinx::la::petsc::Matrix> force_mass_;
   std::unique_ptr<LinearSolver> force_solver_;
 };
