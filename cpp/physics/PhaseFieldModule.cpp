@@ -182,32 +182,30 @@ void PhaseFieldModule::update_interface_potential()
   dE_solver_->solve(b, *dE_->x(), "the projection of dE/dphi (3.84)");
 }
 
+void PhaseFieldModule::add_source(const ufcx_form* form, const std::string& term,
+                                  CoefficientMap coefficients, const ConstantMap& parameters)
+{
+  if (!form)
+    throw std::logic_error(std::string("model ") + scene::to_string(scene_.phase_field.model)
+                           + " has no " + term + " term");
+  ConstantMap constants = constants_;
+  constants.insert(parameters.begin(), parameters.end());
+  coefficients["u0"] = u0_;
+  sources_.push_back(compat::create_form(*form, {W_}, coefficients, constants));
+  source_b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+}
+
 void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
                                        std::shared_ptr<const Function> B_sum,
                                        const ConstantMap& parameters)
 {
-  if (!forms_.load_int)
-    throw std::logic_error(std::string("model ") + scene::to_string(scene_.phase_field.model)
-                           + " has no interaction term");
-  ConstantMap constants = constants_;
-  constants.insert(parameters.begin(), parameters.end());
-  sources_.push_back(compat::create_form(*forms_.load_int, {W_},
-                                         {{"u0", u0_}, {"w_sum", w_sum}, {"B_sum", B_sum}},
-                                         constants));
-  source_b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+  add_source(forms_.load_int, "interaction", {{"w_sum", w_sum}, {"B_sum", B_sum}}, parameters);
 }
 
 void PhaseFieldModule::set_orientation(std::shared_ptr<const Function> P,
                                        const ConstantMap& parameters)
 {
-  if (!forms_.load_polar)
-    throw std::logic_error(std::string("model ") + scene::to_string(scene_.phase_field.model)
-                           + " has no orientation-field term");
-  ConstantMap constants = constants_;
-  constants.insert(parameters.begin(), parameters.end());
-  sources_.push_back(compat::create_form(*forms_.load_polar, {W_},
-                                         {{"u0", u0_}, {"P_polar", P}}, constants));
-  source_b_ = std::make_unique<la::Vector<T>>(periodic_->create_vector());
+  add_source(forms_.load_polar, "orientation-field", {{"P_polar", P}}, parameters);
 }
 
 void PhaseFieldModule::set_velocity(std::shared_ptr<const Function> v)

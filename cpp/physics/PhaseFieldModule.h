@@ -149,6 +149,9 @@ private:
   /// -A g of the Dirichlet values through the matrix last assembled (reused with it)
   std::unique_ptr<dolfinx::la::Vector<T>> lifting_;
   std::unique_ptr<LinearSolver> solver_; ///< created at the first factorisation on a mesh
+  /// An explicit source of the step's right-hand side (form null: the model lacks `term`).
+  void add_source(const ufcx_form* form, const std::string& term, CoefficientMap coefficients,
+                  const ConstantMap& parameters);
   /// Explicit sources of the step's right-hand side: (7.11), (6.15); none by default.
   std::vector<std::shared_ptr<Form>> sources_;
   std::unique_ptr<dolfinx::la::Vector<T>> source_b_; ///< their vector
