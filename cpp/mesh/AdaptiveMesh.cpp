@@ -15,7 +15,8 @@ AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base
     : base_(base),
       levels_(scene::required_levels(scene)), h_base_(scene::base_cell_size(scene.domain)),
       threshold_(scene.numerics.mesh.refine_threshold),
-      band_(2 * std::sqrt(2.0) * std::atanh(threshold_) * scene.numerics.epsilon)
+      band_(2 * std::sqrt(2.0) * std::atanh(threshold_) * scene.numerics.epsilon),
+      inside_(scene.numerics.mesh.refine_inside.value_or(false))
 {
 }
 
@@ -122,7 +123,7 @@ std::vector<std::int32_t> AdaptiveMesh::mark(const Mesh& mesh, const PointEvalua
       const double val = values[c * lattice.size() + p];
       lo = std::min(lo, val), hi = std::max(hi, val), amin = std::min(amin, std::abs(val));
     }
-    if (amin < threshold_ || (lo < 0 && hi > 0))
+    if (amin < threshold_ || (lo < 0 && hi > 0) || (inside_ && hi > -threshold_))
       marked.push_back(c);
   }
   return marked;

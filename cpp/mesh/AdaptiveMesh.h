@@ -13,7 +13,8 @@ public:
   /// The same refinement of another base mesh (a cell's patch of the scene's base mesh).
   AdaptiveMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base);
 
-  /// The base mesh refined `levels()` times wherever |phi| < threshold somewhere in a cell.
+  /// The base mesh refined `levels()` times wherever |phi| < threshold somewhere in a cell
+  /// (with refine_inside wherever phi > -threshold).
   /// Records which cells it refined (see history()).
   std::shared_ptr<Mesh> build(const PointEvaluator& phi);
   /// The mesh of an earlier build() again, from its history (all ranks' centroids):
@@ -33,6 +34,7 @@ private:
   double h_base_;
   double threshold_;
   double band_; ///< width of the band |phi| < threshold
+  bool inside_; ///< also refine where phi > -threshold (numerics.mesh.refine_inside)
   std::vector<std::vector<double>> history_;
 };
 } // namespace cellphase

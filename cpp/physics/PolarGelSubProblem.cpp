@@ -120,10 +120,13 @@ void PolarGelSubProblem::set_initial(Function& P) const
   };
   // Mirrored: R P^0(R x), R the reflection about the domain's centre line in x (Fig. 6.7).
   const double centre = (dom.lower[0] + dom.upper[0]) / 2;
+  const double centre_y = (dom.lower[1] + dom.upper[1]) / 2;
+  const std::array<double, 2> n{-d[1], d[0]}; // the splay's direction, d turned by +90 degrees
   compat::interpolate_vector(P, [&](double x, double y, double)
   {
     const double xs = gel_.mirror ? snap(2 * centre - x) : x;
-    const double px = d[0] + delta(1, xs, y), py = d[1] + delta(2, xs, y);
+    const double fan = gel_.splay * ((xs - centre) * n[0] + (y - centre_y) * n[1]);
+    const double px = d[0] + fan * n[0] + delta(1, xs, y), py = d[1] + fan * n[1] + delta(2, xs, y);
     return std::array<double, 3>{gel_.mirror ? -px : px, py, 0};
   });
   if (!gel_.inside_only)

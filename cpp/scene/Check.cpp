@@ -111,6 +111,7 @@ void polar_gel_report(const Scene& s, Report& r)
                             + (g.noise_length > 0 ? " on a lattice of spacing " + fmt(g.noise_length)
                                                   : " at every node")
                             + ", seed " + std::to_string(g.seed)
+                            + (g.splay != 0 ? ", plus a splay of divergence " + fmt(g.splay) : "")
                             + (g.inside_only ? ", times phi~ (inside the cell only)" : "")
                             + (g.mirror ? ", mirrored about the centre line in x" : ""));
 }
@@ -284,6 +285,9 @@ SizeEstimate estimate_size(const Scene& s)
     const double h = finest_cell_size(s);
     const double fine_volume = d.dim == 2 ? h * h / 2 : h * h * h / 6;
     e.refined_cells = e.interface_measure * band / fine_volume;
+    if (s.numerics.mesh.refine_inside.value_or(false))
+      for (const Cell& c : s.cells)
+        e.refined_cells += enclosed_measure(d, SignedDistance(c, d.dim)) / fine_volume;
     // Never more than the base mesh refined everywhere (a band wider than the domain).
     const double uniform = e.base_cells * std::pow(d.dim == 2 ? 4.0 : 8.0, required_levels(s));
     e.refined_cells = std::min(e.refined_cells, uniform - e.base_cells);
@@ -403,6 +407,9 @@ std::string check_report(const Scene& s)
     r.line("points across", fmt(interface_width(eps) / h) + " mesh points across the interface "
                                 "(requested " + fmt(s.numerics.mesh.points_across_interface)
                                 + ")");
+    r.line("refined", s.numerics.mesh.refine_inside.value_or(false)
+                          ? "the interfaces and the cells' interiors (refine_inside)"
+                          : "the interfaces");
   }
   else
   {

@@ -9,13 +9,13 @@ namespace
 void read_mesh(const Section& m, Mesh& mesh)
 {
   m.allow_only({"adaptive", "remesh_every", "points_across_interface", "refine_threshold",
-                "max_levels", "cell_meshes", "own_margin"});
+                "refine_inside", "max_levels", "cell_meshes", "own_margin"});
   mesh.adaptive = m.boolean("adaptive", mesh.adaptive);
   if (!mesh.adaptive)
   {
     // The uniform base mesh: the refinement keys would have no effect.
     for (const char* key : {"remesh_every", "points_across_interface", "refine_threshold",
-                            "max_levels"})
+                            "refine_inside", "max_levels"})
       if (m.has(key))
         m.fail(key, "has no effect with numerics.mesh.adaptive: false (the base mesh of "
                     "domain.resolution is used as it is); remove it");
@@ -26,6 +26,8 @@ void read_mesh(const Section& m, Mesh& mesh)
   mesh.points_across_interface =
       m.number("points_across_interface", mesh.points_across_interface, positive());
   mesh.refine_threshold = m.number("refine_threshold", mesh.refine_threshold, open(0, 1));
+  if (m.has("refine_inside"))
+    mesh.refine_inside = m.boolean("refine_inside", false);
   mesh.max_levels = m.integer("max_levels", mesh.max_levels, closed(0, 20));
   mesh.cell_meshes = m.choice<Mesh::CellMeshes>(
       "cell_meshes", mesh.cell_meshes,

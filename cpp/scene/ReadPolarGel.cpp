@@ -80,7 +80,8 @@ void read_polar_gel(const Section& top, Scene& s)
                        "a flow section or set activity: 0");
 
   const Section in = p.section("initial");
-  in.allow_only({"direction", "noise", "noise_length", "inside_only", "mirror", "seed"});
+  in.allow_only({"direction", "noise", "noise_length", "inside_only", "splay", "mirror",
+                 "seed"});
   if (in.has("direction"))
   {
     const auto d = in.numbers("direction", {2}, any());
@@ -89,6 +90,7 @@ void read_polar_gel(const Section& top, Scene& s)
   g.noise = in.number("noise", g.noise, non_negative());
   g.noise_length = in.number("noise_length", g.noise_length, non_negative());
   g.inside_only = in.boolean("inside_only", g.inside_only);
+  g.splay = in.number("splay", g.splay, any());
   g.mirror = in.boolean("mirror", g.mirror);
   g.seed = std::uint64_t(in.integer("seed", int(g.seed), closed(0, 2147483647)));
   s.polar_gel = g;

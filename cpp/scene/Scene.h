@@ -130,6 +130,9 @@ struct Mesh
   double points_across_interface = 6;
   double refine_threshold = 0.95;    ///< cells with |phi| below this are refined
   int max_levels = 8;                ///< safety cap on refinement levels
+  /// Refine the cells' interiors (phi > -threshold) as finely as the interface; absent:
+  /// true with polar_gel (P lives inside the cell, section 6.3), else false.
+  std::optional<bool> refine_inside;
   /// Where each phase field is solved: on the one mesh refined around all cells (shared),
   /// or on its own patch of the base mesh refined around its cell only (own), which makes
   /// the cells' cost linear in their number (section 7.2).
@@ -318,6 +321,9 @@ struct PolarGel
   /// P^0 phi~(phi^0) instead of P^0 everywhere (the thesis): without the transient in
   /// which the double well empties the outside (see docs/scenes.md).
   bool inside_only = false;
+  /// A splay added to P^0: splay ((x - x_c) . n) n, n the direction turned by +90 degrees,
+  /// x_c the domain's centre: a fan of divergence `splay` (a seed of the splay mode).
+  double splay = 0;
   /// R P^0(R x) with R the reflection about the domain's centre line in x: the mirror image
   /// of the same perturbation (Fig. 6.7).
   bool mirror = false;

@@ -1,0 +1,130 @@
+"""Figures of an active polar gel run (thesis Figs. 6.5-6.7 and 6.15).
+
+Usage: /usr/bin/python3 python/plot_polar_gel.py RUN_DIR [--times T ...] [--half-width W]
+
+RUN_DIR holds observables.csv and fields.xdmf with the fields phi, P and v. Writes into
+RUN_DIR:
+  polar-gel.png     one column per time, three rows as in Fig. 6.5: |P| with the direction
+                    of P and the zero level set; the velocity in the laboratory frame; the
+                    velocity in the co-moving frame (v1 - v_cell, v2), v_cell the cell's mean
+                    x-velocity (section 6.4.3) at that time;
+  polar-motion.png  x_cm, v_cell, the mean y-velocity, circularity (5.20), the orientation
+                    energy (6.4) and the mean orientation against time.
+"""
+import argparse
+import pathlib
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.tri as mtri  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import cellphase_results  # noqa: E402
+
+
+def nearest_frames(run_dir, times):
+    frames = list(cellphase_results.read_fields(run_dir, ["phi", "P", "v"]))
+    if not frames:
+        sys.exit(f"{run_dir}: no field output with phi, P and v (output.fields, output.every)")
+    return [min(frames, key=lambda f: abs(f[0] - t)) for t in times]
+
+
+def arrows(ax, tri, field, centre, half_width, colour):
+    """Directions of a vector field on a 15 x 11 grid of the view."""
+    gx, gy = np.meshgrid(np.linspace(centre[0] - half_width, centre[0] + half_width, 15),
+                         np.linspace(centre[1] - 0.75 * half_width, centre[1] + 0.75 * half_width, 11))
+    fx = mtri.LinearTriInterpolator(tri, field[:, 0])(gx, gy)
+    fy = mtri.LinearTriInterpolator(tri, field[:, 1])(gx, gy)
+    ax.quiver(gx, gy, fx, fy, color=colour, width=0.004)
+
+
+def draw_fields(run_dir, times, half_width):
+    obs = cellphase_results.read_observables(run_dir)
+    frames = nearest_frames(run_dir, times)
+    rows = ["|P|", "|v| (laboratory)", "|v| (co-moving)"]
+    fig, axes = plt.subplots(len(rows), len(frames), figsize=(3.2 * len(frames), 2.5 * len(rows)),
+                             squeeze=False, constrained_layout=True)
+    for j, (time, points, cells, values) in enumerate(frames):
+        tri = mtri.Triangulation(points[:, 0], points[:, 1], cells)
+        phi = values["phi"]
+        inside = np.clip((1 + phi) / 2, 0, 1)
+        centre = (points[:, :2] * inside[:, None]).sum(axis=0) / inside.sum()
+        if half_width is None:  # the cell and a margin of half its size
+            extent = np.abs(points[phi > 0, :2] - centre).max(axis=0)
+            half_width = 1.5 * max(extent[0], extent[1] / 0.75)
+        k = int(np.argmin(np.abs(np.asarray(obs["time"]) - time)))
+        v_cell = float(obs["cell_velocity_x"][k])
+        P = values["P"][:, :2]
+        v = values["v"][:, :2]
+        co_moving = v - np.array([v_cell, 0.0])
+        for i, (name, field) in enumerate(zip(rows, [P, v, co_moving])):
+            ax = axes[i][j]
+            size = np.linalg.norm(field, axis=1)
+            image = ax.tripcolor(tri, size, shading="gouraud", cmap="viridis")
+            if size.max() > 0:  # (the velocity before the first step is zero)
+                arrows(ax, tri, field, centre, half_width, "w")
+            ax.tricontour(tri, phi, levels=[0.0], colors="r", linewidths=0.8)
+            ax.set_xlim(centre[0] - 1.1 * half_width, centre[0] + 1.1 * half_width)
+            ax.set_ylim(centre[1] - 0.85 * half_width, centre[1] + 0.85 * half_width)
+            ax.set_aspect("equal")
+            ax.set_xticks([])
+            ax.set_yticks([])
+            fig.colorbar(image, ax=ax, shrink=0.7)
+            if i == 0:
+                ax.set_title(f"t = {time:g}, v_cell = {v_cell:.3g}")
+            if j == 0:
+                ax.set_ylabel(name)
+    path = run_dir / "polar-gel.png"
+    fig.savefig(path, dpi=110)
+    print(f"wrote {path}")
+
+
+def draw_motion(run_dir):
+    o = cellphase_results.read_observables(run_dir)
+    t = np.asarray(o["time"])
+    panels = [("center_x", "x_cm (5.19)"), ("cell_velocity_x", "v_cell (6.4.3)"),
+              ("cell_velocity_y", "mean y-velocity"), ("circularity", "circularity (5.20)"),
+              ("polar_energy", "orientation energy (6.4)"), ("polar_P_cell_x", "mean P in the cell")]
+    fig, axes = plt.subplots(2, 3, figsize=(11, 5.5), constrained_layout=True)
+    for ax, (key, label) in zip(axes.flat, panels):
+        if key not in o:
+            ax.set_visible(False)
+            continue
+        ax.plot(t, o[key], label=key.replace("polar_", "") if key == "polar_P_cell_x" else None)
+        if key == "polar_P_cell_x" and "polar_P_cell_y" in o:
+            ax.plot(t, o["polar_P_cell_y"], label="P_cell_y")
+            ax.legend()
+        ax.set_ylabel(label)
+        ax.set_xlabel("t")
+        ax.grid(alpha=0.3)
+    path = run_dir / "polar-motion.png"
+    fig.savefig(path, dpi=110)
+    print(f"wrote {path}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("run_dir", type=pathlib.Path)
+    parser.add_argument("--times", nargs="+", type=float,
+                        help="times of the columns, the nearest output frame each "
+                             "(default: four frames spread over the run)")
+    parser.add_argument("--half-width", type=float,
+                        help="half the width of the view around the cell (default: 1.5 times "
+                             "the cell's half-extent in the first frame drawn)")
+    args = parser.parse_args()
+    if not (args.run_dir / "observables.csv").exists():
+        sys.exit(f"{args.run_dir}: no observables.csv (run the scene first)")
+    draw_motion(args.run_dir)
+    times = args.times
+    if not times:
+        end = float(cellphase_results.read_observables(args.run_dir)["time"][-1])
+        times = [end * f for f in (0.0, 1 / 3, 2 / 3, 1.0)]
+    draw_fields(args.run_dir, times, args.half_width)
+
+
+if __name__ == "__main__":
+    main()
