@@ -6,8 +6,8 @@ RUN_DIR holds observables.csv and fields.xdmf with the fields phi, P and v. Writ
 RUN_DIR:
   polar-gel.png     one column per time, three rows as in Fig. 6.5: |P| with the direction
                     of P and the zero level set; the velocity in the laboratory frame; the
-                    velocity in the co-moving frame (v1 - v_cell, v2), v_cell the cell's mean
-                    x-velocity (section 6.4.3) at that time;
+                    velocity in the co-moving frame, v minus the cell's mean velocity at that
+                    time ((v1 - v_cell, v2) of section 6.4.3 for a cell moving along x);
   polar-motion.png  x_cm, v_cell, the mean y-velocity, circularity (5.20), the orientation
                     energy (6.4) and the mean orientation against time.
 """
@@ -58,9 +58,10 @@ def draw_fields(run_dir, times, half_width):
             half_width = 1.5 * max(extent[0], extent[1] / 0.75)
         k = int(np.argmin(np.abs(np.asarray(obs["time"]) - time)))
         v_cell = float(obs["cell_velocity_x"][k])
+        v_cell_y = float(obs["cell_velocity_y"][k]) if "cell_velocity_y" in obs else 0.0
         P = values["P"][:, :2]
         v = values["v"][:, :2]
-        co_moving = v - np.array([v_cell, 0.0])
+        co_moving = v - np.array([v_cell, v_cell_y])
         for i, (name, field) in enumerate(zip(rows, [P, v, co_moving])):
             ax = axes[i][j]
             size = np.linalg.norm(field, axis=1)
@@ -75,7 +76,7 @@ def draw_fields(run_dir, times, half_width):
             ax.set_yticks([])
             fig.colorbar(image, ax=ax, shrink=0.7)
             if i == 0:
-                ax.set_title(f"t = {time:g}, v_cell = {v_cell:.3g}")
+                ax.set_title(f"t = {time:g}, v_cell = ({v_cell:.3g}, {v_cell_y:.3g})", fontsize=9)
             if j == 0:
                 ax.set_ylabel(name)
     path = run_dir / "polar-gel.png"
