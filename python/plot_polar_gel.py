@@ -8,8 +8,9 @@ RUN_DIR:
                     of P and the zero level set; the velocity in the laboratory frame; the
                     velocity in the co-moving frame, v minus the cell's mean velocity at that
                     time ((v1 - v_cell, v2) of section 6.4.3 for a cell moving along x);
-  polar-motion.png  x_cm, v_cell, the mean y-velocity, circularity (5.20), the orientation
-                    energy (6.4) and the mean orientation against time.
+  polar-motion.png  the observables of plot_run.py against time: volume, energies,
+                    circularity (5.20), centre, mean velocity, the orientation energy (6.4)
+                    and the mean orientation in the cell.
 """
 import argparse
 import pathlib
@@ -24,6 +25,7 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import cellphase_results  # noqa: E402
+import plot_run  # noqa: E402
 
 
 def nearest_frames(run_dir, times):
@@ -84,29 +86,6 @@ def draw_fields(run_dir, times, half_width):
     print(f"wrote {path}")
 
 
-def draw_motion(run_dir):
-    o = cellphase_results.read_observables(run_dir)
-    t = np.asarray(o["time"])
-    panels = [("center_x", "x_cm (5.19)"), ("cell_velocity_x", "v_cell (6.4.3)"),
-              ("cell_velocity_y", "mean y-velocity"), ("circularity", "circularity (5.20)"),
-              ("polar_energy", "orientation energy (6.4)"), ("polar_P_cell_x", "mean P in the cell")]
-    fig, axes = plt.subplots(2, 3, figsize=(11, 5.5), constrained_layout=True)
-    for ax, (key, label) in zip(axes.flat, panels):
-        if key not in o:
-            ax.set_visible(False)
-            continue
-        ax.plot(t, o[key], label=key.replace("polar_", "") if key == "polar_P_cell_x" else None)
-        if key == "polar_P_cell_x" and "polar_P_cell_y" in o:
-            ax.plot(t, o["polar_P_cell_y"], label="P_cell_y")
-            ax.legend()
-        ax.set_ylabel(label)
-        ax.set_xlabel("t")
-        ax.grid(alpha=0.3)
-    path = run_dir / "polar-motion.png"
-    fig.savefig(path, dpi=110)
-    print(f"wrote {path}")
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("run_dir", type=pathlib.Path)
@@ -119,7 +98,10 @@ def main():
     args = parser.parse_args()
     if not (args.run_dir / "observables.csv").exists():
         sys.exit(f"{args.run_dir}: no observables.csv (run the scene first)")
-    draw_motion(args.run_dir)
+    # The motion against time: the observables panels of plot_run.py (those of the gel
+    # included), under the name the demos use.
+    plot_run.plot_observables(cellphase_results.read_observables(args.run_dir), 2,
+                              args.run_dir.name, args.run_dir / "polar-motion.png")
     times = args.times
     if not times:
         end = float(cellphase_results.read_observables(args.run_dir)["time"][-1])

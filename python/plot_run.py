@@ -48,6 +48,10 @@ def plot_observables(obs, dim, title, path):
                                        ("cell_velocity_z", "z", None)]),
         ("energy with flow", "energy", [("kinetic_energy", "kinetic", None),
                                         ("total_energy_kinetic", "kinetic + interface", None)]),
+        # polar gel runs only
+        ("orientation energy (6.4)", "energy", [("polar_energy", None, None)]),
+        ("mean orientation in the cell", "P", [("polar_P_cell_x", "x", None),
+                                               ("polar_P_cell_y", "y", None)]),
     ]
     # Keep the curves whose column exists and is not all zero, and the panels left with one.
     panels = [(panel, ylabel, kept) for panel, ylabel, curves in panels
