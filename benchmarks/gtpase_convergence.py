@@ -47,13 +47,14 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("study", nargs="?", type=Path,
                         default=ROOT / "benchmarks" / "studies" / "gtpase-convergence.yaml")
-    parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--jobs", type=int, default=1, help="members run at once")
+    parser.add_argument("--mpi", type=int, default=1, help="MPI ranks per member")
     parser.add_argument("--report-only", action="store_true")
     parser.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results")
     args = parser.parse_args()
     if not args.report_only:
         subprocess.run([sys.executable, str(ROOT / "python" / "study.py"), "run", str(args.study),
-                        "--jobs", str(args.jobs)], check=True)
+                        "--jobs", str(args.jobs), "--mpi", str(args.mpi)], check=True)
     study = load_study(args.study)
     results = member_results(study)
     errors = convergence_errors(results, [q for q, _, _ in QUANTITIES])
