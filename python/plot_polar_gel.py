@@ -29,7 +29,9 @@ import plot_run  # noqa: E402
 
 
 def nearest_frames(run_dir, times):
-    frames = list(cellphase_results.read_fields(run_dir, ["phi", "P", "v"]))
+    needed = {"phi", "P", "v"}
+    frames = [f for f in cellphase_results.read_fields(run_dir, sorted(needed))
+              if needed <= set(f[3])]
     if not frames:
         sys.exit(f"{run_dir}: no field output with phi, P and v (output.fields, output.every)")
     return [min(frames, key=lambda f: abs(f[0] - t)) for t in times]

@@ -8,7 +8,10 @@ Each member runs in OUTPUT/<member>/ (observables.csv, stdout.txt, stderr.txt). 
 successful run the runner writes OUTPUT/<member>/done with the measured wall time, peak
 memory and settings; members with that marker and the same settings are skipped. The
 report is OUTPUT/report.md with error_vs_walltime.png (ladder) or end_state.png (sweep).
-See docs/studies.md.
+Long members can be stopped and continued: `kill -USR1 <pid of study.py>` (or Ctrl-C) stops
+the running members after their current step with a checkpoint (marker OUTPUT/<member>/stopped)
+and starts no others; the next `study.py run` continues them from their checkpoints, and
+their wall time is the sum of the attempts. See docs/studies.md.
 Exit status: 0 all members finished, 1 some member failed, 2 bad study file or usage.
 """
 import argparse
@@ -17,7 +20,9 @@ import json
 import os
 import platform
 import shutil
+import signal
 import subprocess
+import threading
 import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -31,6 +36,23 @@ from study_report import write_convergence_report, write_sweep_report  # noqa: E
 ROOT = Path(__file__).resolve().parents[1]
 DONE = "done"      # marker of a finished member: JSON with wall time and peak memory
 FAILED = "failed"  # marker of a failed member: JSON with exit status and message
+STOPPED = "stopped"  # marker of a member stopped with a checkpoint: JSON with its wall time
+STOPPED_EXIT = 5     # cellphase's exit status after SIGINT/SIGTERM/SIGUSR1 and a checkpoint
+
+
+class Running:
+    """The members' processes, so that a stop request reaches every one of them."""
+    lock = threading.Lock()
+    processes = set()
+    stop_requested = False
+
+    @classmethod
+    def stop(cls, signum, frame):
+        with cls.lock:
+            cls.stop_requested = True
+            for proc in cls.processes:
+                # mpirun forwards SIGUSR1 to its ranks; cellphase checkpoints and exits 5.
+                proc.send_signal(signal.SIGUSR1)
 
 
 def find_executable(given=None):
@@ -58,8 +80,13 @@ def run_command(args, run_dir, env=None):
     """
     with open(run_dir / "stdout.txt", "w") as out, open(run_dir / "stderr.txt", "w") as err:
         t0 = time.perf_counter()
-        proc = subprocess.Popen(args, stdout=out, stderr=err, env={**os.environ, **(env or {})})
+        with Running.lock:
+            proc = subprocess.Popen(args, stdout=out, stderr=err, env={**os.environ, **(env or {})},
+                                    start_new_session=True)  # a stop comes from Running.stop
+            Running.processes.add(proc)
         _, status, usage = os.wait4(proc.pid, 0)
+        with Running.lock:
+            Running.processes.discard(proc)
         wall = time.perf_counter() - t0
     proc.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
     return proc.returncode, wall, usage.ru_maxrss / 1024
@@ -84,19 +111,47 @@ def run_member(exe, study, member, ranks=1, jobs=1):
         # Results of other settings (the study's `set` was edited) are not reused.
         if json.loads((run_dir / DONE).read_text()).get("settings") == settings:
             return f"{member.name}: done before, skipped"
-    shutil.rmtree(run_dir, ignore_errors=True)  # a partial, failed or outdated attempt
-    run_dir.mkdir(parents=True)
+    if Running.stop_requested:
+        return f"{member.name}: not started (the study was stopped)"
     args = [exe, "run", str(study.scene)] + [a for s in settings for a in ("--set", s)]
+    earlier = stopped_attempts(run_dir, settings)
+    if earlier:
+        args += ["--restart", str(run_dir)]
+        for marker in (STOPPED, FAILED):
+            (run_dir / marker).unlink(missing_ok=True)
+    else:
+        shutil.rmtree(run_dir, ignore_errors=True)  # a partial, failed or outdated attempt
+        run_dir.mkdir(parents=True)
     (run_dir / "command.txt").write_text(" ".join(mpi_prefix(ranks, jobs) + args) + "\n")
     code, wall, peak = run_command(mpi_prefix(ranks, jobs) + args, run_dir,
                                    env={"OPENBLAS_NUM_THREADS": "1"} if ranks > 1 else None)
-    record = {"exit": code, "wall": wall, "peak_mb": peak, "ranks": ranks, "settings": settings}
+    attempts = (earlier or []) + [wall]
+    record = {"exit": code, "wall": sum(attempts), "peak_mb": peak, "ranks": ranks,
+              "settings": settings, "attempts": attempts}
+    if code == STOPPED_EXIT:
+        (run_dir / STOPPED).write_text(json.dumps(record) + "\n")
+        return (f"{member.name}: stopped with a checkpoint after {sum(attempts):.1f} s; "
+                "`study.py run` continues it")
     if code == 0:
         (run_dir / DONE).write_text(json.dumps(record) + "\n")
         return f"{member.name}: finished in {wall:.1f} s"
     record["message"] = first_line(run_dir / "stderr.txt")
     (run_dir / FAILED).write_text(json.dumps(record) + "\n")
     return f"{member.name}: FAILED (exit {code}) {record['message']}"
+
+
+def stopped_attempts(run_dir, settings):
+    """Wall times of the earlier attempts of a member stopped with a checkpoint under the
+    same settings (None if it cannot be continued)."""
+    for marker in (STOPPED, FAILED):
+        path = run_dir / marker
+        if not path.is_file():
+            continue
+        record = json.loads(path.read_text())
+        stopped = record.get("exit") == STOPPED_EXIT and record.get("settings") == settings
+        if stopped and any((run_dir / "checkpoints").glob("*.cpk")):
+            return record.get("attempts", [record["wall"]])
+    return None
 
 
 def collect(study):
@@ -106,12 +161,17 @@ def collect(study):
         run_dir = study.output / m.name
         r = {"name": m.name, "eps": m.eps, "params": m.params, "obs": None,
              "status": "not run", "wall": None, "peak_mb": None}
-        for marker in (DONE, FAILED):
+        for marker in (DONE, STOPPED, FAILED):
             if (run_dir / marker).is_file():
                 record = json.loads((run_dir / marker).read_text())
                 r["wall"], r["peak_mb"] = record.get("wall"), record.get("peak_mb")
-                r["status"] = "ok" if marker == DONE else \
-                    f"failed (exit {record['exit']}): {record.get('message', '')}".replace("|", "/")
+                if marker == DONE:
+                    r["status"] = "ok"
+                elif marker == STOPPED or record.get("exit") == STOPPED_EXIT:
+                    r["status"] = "stopped with a checkpoint (study.py run continues it)"
+                else:
+                    r["status"] = f"failed (exit {record['exit']}): " \
+                                  f"{record.get('message', '')}".replace("|", "/")
                 break
         try:
             r["obs"] = read_observables(run_dir)
@@ -161,6 +221,8 @@ def main(argv=None):
             exe = find_executable(a.exe)
             study.output.mkdir(parents=True, exist_ok=True)
             print(f"{len(study.members)} members in {study.output}", flush=True)
+            for signum in (signal.SIGUSR1, signal.SIGINT, signal.SIGTERM):
+                signal.signal(signum, Running.stop)
             with ThreadPoolExecutor(max_workers=a.jobs) as pool:
                 futures = [pool.submit(run_member, exe, study, m, a.mpi, a.jobs)
                            for m in study.members]

@@ -100,12 +100,8 @@ void FlowSubProblem::attach(FieldRegistry& fields)
                                                  {{"phi", fields.get(g.prefix + ".phi")},
                                                   {"mu", fields.get(g.prefix + ".potential")}},
                                                  c));
-    auto a = compat::create_form(*forms.a, {Vf, Vf}, {}, {});
-    force_mass_ = create_matrix(*a);
-    assemble_matrix(force_mass_->mat(), *a, {});
-    force_solver_ = std::make_unique<LinearSolver>(comm_, "force_", std::map<std::string, std::string>{},
-                                                   Symmetry::positive_definite);
-    force_solver_->set_operator(force_mass_->mat());
+    force_projection_ = std::make_unique<L2Projection>(
+        *compat::create_form(*forms.a, {Vf, Vf}, {}, {}), comm_, "force_");
     prepare_cell_force(phi_cells);
   }
   fields.set("flow.v", flow_.velocity());
@@ -117,14 +113,11 @@ void FlowSubProblem::attach(FieldRegistry& fields)
 double FlowSubProblem::project_interface_force()
 {
   auto t0 = Clock::now();
-  auto f = flow_.membrane_force();
-  dolfinx::la::Vector<T> b(f->function_space()->dofmap()->index_map,
-                           f->function_space()->dofmap()->index_map_bs());
-  b.set(0.0);
+  std::vector<const Form*> forms;
   for (const auto& L : force_forms_)
-    dolfinx::fem::assemble_vector(b.mutable_array(), *L);
-  b.scatter_rev(std::plus<T>());
-  force_solver_->solve(b, *f->x(), "the projection of the cells' interface force (7.12)");
+    forms.push_back(L.get());
+  force_projection_->project(forms, *flow_.membrane_force(),
+                             "the projection of the cells' interface force (7.12)");
   return seconds_since(t0);
 }
 

@@ -6,6 +6,7 @@
 #include "physics/FlowModule.h"
 #include "scene/Plan.h"
 #include "scene/Scene.h"
+#include "solve/L2Projection.h"
 #include "solve/LinearSolver.h"
 #include <memory>
 
@@ -45,8 +46,7 @@ private:
   FieldRegistry* fields_ = nullptr;
   // The projection of the summed force (several cells only), rebuilt on every mesh
   std::vector<std::shared_ptr<Form>> force_forms_;
-  std::unique_ptr<dolfinx::la::petsc::Matrix> force_mass_;
-  std::unique_ptr<LinearSolver> force_solver_;
+  std::unique_ptr<L2Projection> force_projection_;
   // flow.cell_force, rebuilt on every mesh
   std::shared_ptr<const Function> phi_cells_;
   std::vector<double> cell_force_;           ///< F at the nodes of f_membrane (node-major)

@@ -162,12 +162,8 @@ std::shared_ptr<const Function> PhaseFieldModule::interface_potential()
     dE_->name = "dE";
     CoefficientMap coeffs{{"phi_h", fields_.at("phi")}, {"mu_h", fields_.at("mu")}};
     dE_rhs_ = compat::create_form(*forms_.L_dE, {V_}, coeffs, constants_);
-    auto a = compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_);
-    dE_mass_ = create_matrix(*a);
-    assemble_matrix(dE_mass_->mat(), *a, {});
-    dE_solver_ = std::make_unique<LinearSolver>(comm_, "mass_", std::map<std::string, std::string>{},
-                                                Symmetry::positive_definite);
-    dE_solver_->set_operator(dE_mass_->mat());
+    dE_projection_ = std::make_unique<L2Projection>(
+        *compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_), comm_, "mass_");
     update_interface_potential();
   }
   return dE_;
@@ -175,11 +171,7 @@ std::shared_ptr<const Function> PhaseFieldModule::interface_potential()
 
 void PhaseFieldModule::update_interface_potential()
 {
-  la::Vector<T> b(V_->dofmap()->index_map, 1);
-  b.set(0.0);
-  fem::assemble_vector(b.mutable_array(), *dE_rhs_);
-  b.scatter_rev(std::plus<T>());
-  dE_solver_->solve(b, *dE_->x(), "the projection of dE/dphi (3.84)");
+  dE_projection_->project(*dE_rhs_, *dE_, "the projection of dE/dphi (3.84)");
 }
 
 void PhaseFieldModule::add_source(const ufcx_form* form, const std::string& term,

@@ -6,6 +6,7 @@
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
 #include "compat/Periodic.h"
+#include "solve/L2Projection.h"
 #include "solve/LinearSolver.h"
 #include <future>
 #include <map>
@@ -116,8 +117,7 @@ private:
   bool flowing_ = false;                            ///< velocity_ is the flow's
   std::shared_ptr<Function> dE_;                    ///< dE/dphi (L2 Helfrich with flow)
   std::shared_ptr<Form> dE_rhs_;
-  std::unique_ptr<LinearSolver> dE_solver_;         ///< mass matrix, factorised per mesh
-  std::unique_ptr<dolfinx::la::petsc::Matrix> dE_mass_;
+  std::unique_ptr<L2Projection> dE_projection_;     ///< mass matrix, factorised per mesh
   std::shared_ptr<Function> boundary_value_;
   BCs bcs_;
   std::shared_ptr<Form> a_, L_;

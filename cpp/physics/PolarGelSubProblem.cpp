@@ -14,36 +14,6 @@ namespace
 {
 std::shared_ptr<Constant> constant(double v) { return std::make_shared<Constant>(v); }
 
-/// A vector P2 mass-matrix solve, for the projections of P# and of the force.
-struct Projection
-{
-  std::unique_ptr<dolfinx::la::petsc::Matrix> mass;
-  std::unique_ptr<LinearSolver> solver;
-};
-
-Projection make_projection(const InterfaceForceForms& forms, std::shared_ptr<Space> V,
-                           MPI_Comm comm, const std::string& prefix)
-{
-  Projection p;
-  auto a = compat::create_form(*forms.a, {V, V}, {}, {});
-  p.mass = create_matrix(*a);
-  assemble_matrix(p.mass->mat(), *a, {});
-  p.solver = std::make_unique<LinearSolver>(comm, prefix, std::map<std::string, std::string>{},
-                                            Symmetry::positive_definite);
-  p.solver->set_operator(p.mass->mat());
-  return p;
-}
-
-void project(LinearSolver& solver, const Form& L, Function& out, const std::string& what)
-{
-  const auto& V = *out.function_space();
-  dolfinx::la::Vector<T> b(V.dofmap()->index_map, V.dofmap()->index_map_bs());
-  b.set(0.0);
-  dolfinx::fem::assemble_vector(b.mutable_array(), L);
-  b.scatter_rev(std::plus<T>());
-  solver.solve(b, *out.x(), what);
-  out.x()->scatter_fwd();
-}
 } // namespace
 
 PolarGelSubProblem::PolarGelSubProblem(scene::PlanStep step, const scene::Scene& scene,
@@ -206,11 +176,10 @@ void PolarGelSubProblem::project_sharp()
   if (!sharp_L_ || sharp_L_->function_spaces()[0] != V)
   {
     sharp_L_ = compat::create_form(*forms_.L_sharp, {V}, {{"Pi", P_}, {"phi", phi_}}, constants_);
-    Projection p = make_projection(mass_forms_, V, comm_, "polar_sharp_");
-    sharp_mass_ = std::move(p.mass);
-    sharp_solver_ = std::move(p.solver);
+    sharp_projection_ = std::make_unique<L2Projection>(
+        *compat::create_form(*mass_forms_.a, {V, V}, {}, {}), comm_, "polar_sharp_");
   }
-  project(*sharp_solver_, *sharp_L_, *P_sharp_, "the projection of P# (6.17)");
+  sharp_projection_->project(*sharp_L_, *P_sharp_, "the projection of P# (6.17)");
 }
 
 void PolarGelSubProblem::connect(FieldRegistry& fields)
@@ -244,9 +213,8 @@ void PolarGelSubProblem::connect(FieldRegistry& fields)
     force_->name = "polar_force";
     force_L_ = compat::create_form(*forms_.force_L, {Vf},
                                    {{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}}, constants_);
-    Projection p = make_projection(mass_forms_, Vf, comm_, "polar_force_");
-    force_mass_ = std::move(p.mass);
-    force_solver_ = std::move(p.solver);
+    force_projection_ = std::make_unique<L2Projection>(
+        *compat::create_form(*mass_forms_.a, {Vf, Vf}, {}, {}), comm_, "polar_force_");
     update_force();
     fields.set("polar.force", force_);
   }
@@ -254,7 +222,7 @@ void PolarGelSubProblem::connect(FieldRegistry& fields)
 
 void PolarGelSubProblem::update_force()
 {
-  project(*force_solver_, *force_L_, *force_, "the projection of the orientation force (6.13)");
+  force_projection_->project(*force_L_, *force_, "the projection of the orientation force (6.13)");
 }
 
 StepTimings PolarGelSubProblem::step(double dt)

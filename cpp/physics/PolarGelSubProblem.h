@@ -9,6 +9,7 @@
 #include "core/SubProblem.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
+#include "solve/L2Projection.h"
 #include "solve/LinearSolver.h"
 #include <memory>
 #include <vector>
@@ -73,9 +74,7 @@ private:
   std::shared_ptr<Function> force_;
   std::shared_ptr<Form> force_L_;
   std::shared_ptr<Form> sharp_L_;                 ///< (6.17) of the standalone P, phi
-  std::unique_ptr<dolfinx::la::petsc::Matrix> sharp_mass_;
-  std::unique_ptr<LinearSolver> sharp_solver_;
-  std::unique_ptr<dolfinx::la::petsc::Matrix> force_mass_;
-  std::unique_ptr<LinearSolver> force_solver_;
+  std::unique_ptr<L2Projection> sharp_projection_;
+  std::unique_ptr<L2Projection> force_projection_;
 };
 } // namespace cellphase

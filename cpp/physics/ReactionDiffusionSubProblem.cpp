@@ -194,13 +194,8 @@ void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
     ConstantMap c{{"capillary", constant(-1.0 / *scene_.numbers.Fa)}};
     force_L_ = compat::create_form(*force_forms_.L, {Vf},
                                    {{"phi", phi_}, {"mu", species_[protrusion_]}}, c);
-    auto a = compat::create_form(*force_forms_.a, {Vf, Vf}, {}, {});
-    force_mass_ = create_matrix(*a);
-    assemble_matrix(force_mass_->mat(), *a, {});
-    force_solver_ = std::make_unique<LinearSolver>(comm_, "rd_force_",
-                                                   std::map<std::string, std::string>{},
-                                                   Symmetry::positive_definite);
-    force_solver_->set_operator(force_mass_->mat());
+    force_projection_ = std::make_unique<L2Projection>(
+        *compat::create_form(*force_forms_.a, {Vf, Vf}, {}, {}), comm_, "rd_force_");
     update_force();
     fields.set("rd.force", force_);
   }
@@ -208,13 +203,7 @@ void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
 
 void ReactionDiffusionSubProblem::update_force()
 {
-  dolfinx::la::Vector<T> b(force_->function_space()->dofmap()->index_map,
-                           force_->function_space()->dofmap()->index_map_bs());
-  b.set(0.0);
-  dolfinx::fem::assemble_vector(b.mutable_array(), *force_L_);
-  b.scatter_rev(std::plus<T>());
-  force_solver_->solve(b, *force_->x(), "the projection of the protrusion force (5.7)");
-  force_->x()->scatter_fwd();
+  force_projection_->project(*force_L_, *force_, "the projection of the protrusion force (5.7)");
 }
 
 void ReactionDiffusionSubProblem::update_signal(double t)

@@ -9,6 +9,7 @@
 #include "core/SubProblem.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
+#include "solve/L2Projection.h"
 #include "solve/LinearSolver.h"
 #include <array>
 #include <memory>
@@ -81,7 +82,6 @@ private:
   // Protrusion force (with a flow and numbers.Fa)
   std::shared_ptr<Function> force_;
   std::shared_ptr<Form> force_L_;
-  std::unique_ptr<dolfinx::la::petsc::Matrix> force_mass_;
-  std::unique_ptr<LinearSolver> force_solver_;
+  std::unique_ptr<L2Projection> force_projection_;
 };
 } // namespace cellphase

@@ -1,5 +1,6 @@
 """Studies: error norm and ROC on synthetic series, study-file checks, reports, and a tiny
 convergence study run end to end through the real executable."""
+import json
 import math
 import os
 import subprocess
@@ -199,3 +200,61 @@ def test_failures_are_data(tmp_path):
     assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
     assert proc.stdout.startswith("bad: FAILED (exit 2) error:"), proc.stdout
     assert "FAILED (exit 2)" in (tmp_path / "hard.md").read_text()
+
+
+def test_stopped_member_continues_from_its_checkpoint(tmp_path):
+    """SIGUSR1 to study.py stops the running member after a checkpoint (marker `stopped`,
+    exit status 1, no later member started); the next `run` continues it with --restart,
+    its observables are those of an uninterrupted run bit for bit, and its wall time is
+    the sum of the two attempts."""
+    require_exe()
+    import csv
+    import signal
+    import time
+    from test_checkpoint import NOT_STATE
+    env = {**os.environ, "CELLPHASE_EXE": EXE}
+    text = ("scene: SCENE\noutput: out\n"
+            "set: {numerics.end_time: 1.0, numerics.dt: 0.002, output.checkpoints.every: 10}\n"
+            "sweep: {numerics.epsilon: [0.08, 0.1]}\n")
+    path = write_study(tmp_path, text)
+    run = [sys.executable, str(STUDY), "run", str(path)]
+    member = tmp_path / "out" / "epsilon=0.08"
+    study = subprocess.Popen(run, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             env=env)
+    deadline = time.time() + 120
+    while not any(p.name != "checkpoint-0.cpk" for p in member.glob("checkpoints/*.cpk")):
+        assert study.poll() is None and time.time() < deadline, "no checkpoint came"
+        time.sleep(0.2)
+    study.send_signal(signal.SIGUSR1)
+    out, err = study.communicate(timeout=120)
+    assert study.returncode == 1, out + err
+    assert "epsilon=0.08: stopped with a checkpoint" in out, out
+    assert "epsilon=0.1: not started" in out, out
+    assert (member / "stopped").is_file() and not (tmp_path / "out" / "epsilon=0.1").exists()
+    with open(member / "observables.csv") as f:
+        stopped_at = int(list(csv.DictReader(f))[-1]["step"])
+    assert 0 < stopped_at < 500
+    assert "stopped with a checkpoint" in (tmp_path / "out" / "report.md").read_text()
+
+    proc = subprocess.run(run, capture_output=True, text=True, env=env, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "epsilon=0.08: finished" in proc.stdout and "epsilon=0.1: finished" in proc.stdout
+    done = json.loads((member / "done").read_text())
+    assert len(done["attempts"]) == 2 and done["wall"] == pytest.approx(sum(done["attempts"]))
+    assert "--restart" in (member / "command.txt").read_text()
+
+    # The same member in one go.
+    path = write_study(tmp_path, text.replace("out\n", "whole\n").replace("[0.08, 0.1]", "[0.08]"))
+    run[-1] = str(path)
+    proc = subprocess.run(run, capture_output=True, text=True, env=env, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+
+    def rows(d):
+        with open(d / "observables.csv") as f:
+            return list(csv.DictReader(f))
+    # Bit for bit: the same text in every column but the wall times (nan stays nan).
+    resumed, whole = rows(member), rows(tmp_path / "whole" / "epsilon=0.08")
+    assert [r["step"] for r in resumed] == [r["step"] for r in whole]
+    for a, b in zip(resumed, whole):
+        assert {k: v for k, v in a.items() if k not in NOT_STATE} == \
+               {k: v for k, v in b.items() if k not in NOT_STATE}, a["step"]

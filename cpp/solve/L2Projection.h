@@ -1,0 +1,31 @@
+// The L2 projection of a linear form onto a finite element space: out = M^-1 b(L) with the
+// space's mass matrix M, factorised once per mesh (it is positive definite, so L D L^T).
+// The explicit forces on the flow (interface, protrusion, orientation) and the chemical
+// potentials that enter other sub-problems as coefficients are made this way.
+#pragma once
+#include "compat/Dolfinx.h"
+#include "solve/LinearSolver.h"
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cellphase
+{
+class L2Projection
+{
+public:
+  /// `mass` is the bilinear form of M on V (with its constants); `prefix` names the solver.
+  L2Projection(const Form& mass, MPI_Comm comm, const std::string& prefix);
+
+  /// out = M^-1 (sum of the linear forms); `what` names the projection in an error.
+  void project(const std::vector<const Form*>& forms, Function& out, const std::string& what);
+  void project(const Form& form, Function& out, const std::string& what)
+  {
+    project(std::vector<const Form*>{&form}, out, what);
+  }
+
+private:
+  std::unique_ptr<dolfinx::la::petsc::Matrix> mass_;
+  std::unique_ptr<LinearSolver> solver_;
+};
+} // namespace cellphase
