@@ -22,8 +22,8 @@ import platform
 import shutil
 import signal
 import subprocess
-import threading
 import sys
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
