@@ -28,7 +28,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
-from cellphase_results import read_observables  # noqa: E402
+from cellphase_results import ResultsError, read_observables  # noqa: E402
 from study_file import load_study  # noqa: E402
 from study_report import convergence_errors  # noqa: E402
 
@@ -57,12 +57,17 @@ def member_results(study):
 def unfinished_state(run_dir):
     try:
         obs = read_observables(run_dir)
-    except Exception:  # noqa: BLE001 (no run directory, or no step written yet)
+    except ResultsError:  # no run directory, or no step written yet
         return "not started"
     state = f"at t = {float(obs['time'][-1]):g}, step {int(obs['step'][-1])}"
-    if (run_dir / "stopped").exists() or (run_dir / "failed").exists():
-        return state + ", stopped; study.py run continues it from its checkpoint"
-    return state
+    for marker in ("stopped", "failed"):
+        if (run_dir / marker).exists():
+            record = json.loads((run_dir / marker).read_text())
+            if record.get("exit") == 5:  # cellphase's status after a stop with a checkpoint
+                return state + ", stopped; study.py run continues it from its checkpoint"
+            return state + f", failed with exit status {record.get('exit')}: " \
+                           f"{record.get('message', '')}"
+    return state + ", running or killed"
 
 
 def plot_members(results, path):
