@@ -19,7 +19,6 @@ twice the 0.03 member.
 """
 import argparse
 import csv
-import json
 import subprocess
 import sys
 from pathlib import Path
@@ -28,7 +27,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
-from cellphase_results import ResultsError, read_observables  # noqa: E402
+import study as study_runner  # noqa: E402  (python/study.py)
 from study_file import load_study  # noqa: E402
 from study_report import convergence_errors  # noqa: E402
 
@@ -38,36 +37,19 @@ QUANTITIES = [("center_x", "err_xcm", "x_cm"), ("cell_velocity_x", "err_vcm", "v
 
 
 def member_results(study):
-    """The finished members, coarsest first, and a line for each unfinished one."""
+    """The finished members, coarsest first, and a line for each unfinished one (the study
+    tool's own reading of its run directories and markers)."""
     results, missing = [], []
-    for m in study.members:
-        run_dir = study.output / m.name
-        done = run_dir / "done"
-        if not done.exists():
-            missing.append(f"eps = {m.eps:g}: not finished ({unfinished_state(run_dir)})")
+    for r in study_runner.collect(study):
+        if r["status"] == "ok":
+            results.append(r)
             continue
-        info = json.loads(done.read_text())
-        results.append({"name": m.name, "eps": m.eps, "obs": read_observables(run_dir),
-                        "status": "ok", "wall": info.get("wall"), "ranks": info.get("ranks", 1)})
+        at = f"at t = {float(r['obs']['time'][-1]):g}, step {int(r['obs']['step'][-1])}; " \
+            if r["obs"] is not None else ""
+        missing.append(f"eps = {r['eps']:g}: not finished ({at}{r['status']})")
     if len(results) < 2:
         sys.exit(f"{study.output}: fewer than two members finished (run without --report-only)")
     return sorted(results, key=lambda r: -r["eps"]), missing
-
-
-def unfinished_state(run_dir):
-    try:
-        obs = read_observables(run_dir)
-    except ResultsError:  # no run directory, or no step written yet
-        return "not started"
-    state = f"at t = {float(obs['time'][-1]):g}, step {int(obs['step'][-1])}"
-    for marker in ("stopped", "failed"):
-        if (run_dir / marker).exists():
-            record = json.loads((run_dir / marker).read_text())
-            if record.get("exit") == 5:  # cellphase's status after a stop with a checkpoint
-                return state + ", stopped; study.py run continues it from its checkpoint"
-            return state + f", failed with exit status {record.get('exit')}: " \
-                           f"{record.get('message', '')}"
-    return state + ", running or killed"
 
 
 def plot_members(results, path):

@@ -46,8 +46,7 @@ def arrows(ax, tri, field, centre, half_width, colour):
     ax.quiver(gx, gy, fx, fy, color=colour, width=0.004)
 
 
-def draw_fields(run_dir, times, half_width):
-    obs = cellphase_results.read_observables(run_dir)
+def draw_fields(run_dir, obs, times, half_width):
     frames = nearest_frames(run_dir, times)
     rows = ["|P|", "|v| (laboratory)", "|v| (co-moving)"]
     fig, axes = plt.subplots(len(rows), len(frames), figsize=(3.2 * len(frames), 2.5 * len(rows)),
@@ -102,13 +101,13 @@ def main():
         sys.exit(f"{args.run_dir}: no observables.csv (run the scene first)")
     # The motion against time: the observables panels of plot_run.py (those of the gel
     # included), under the name the demos use.
-    plot_run.plot_observables(cellphase_results.read_observables(args.run_dir), 2,
-                              args.run_dir.name, args.run_dir / "polar-motion.png")
+    obs = cellphase_results.read_observables(args.run_dir)
+    plot_run.plot_observables(obs, 2, args.run_dir.name, args.run_dir / "polar-motion.png")
     times = args.times
     if not times:
-        end = float(cellphase_results.read_observables(args.run_dir)["time"][-1])
+        end = float(obs["time"][-1])
         times = [end * f for f in (0.0, 1 / 3, 2 / 3, 1.0)]
-    draw_fields(args.run_dir, times, args.half_width)
+    draw_fields(args.run_dir, obs, times, args.half_width)
 
 
 if __name__ == "__main__":

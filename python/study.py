@@ -165,6 +165,7 @@ def collect(study):
             if (run_dir / marker).is_file():
                 record = json.loads((run_dir / marker).read_text())
                 r["wall"], r["peak_mb"] = record.get("wall"), record.get("peak_mb")
+                r["ranks"] = record.get("ranks", 1)
                 if marker == DONE:
                     r["status"] = "ok"
                 elif marker == STOPPED or record.get("exit") == STOPPED_EXIT:
