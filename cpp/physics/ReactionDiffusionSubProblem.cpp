@@ -181,7 +181,7 @@ void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
   A_ = std::make_unique<dolfinx::la::petsc::Matrix>(constraint_->create_matrix(*a_));
   b_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
   x_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
-  solver_ = std::make_unique<LinearSolver>(comm_, "rd_", scene_.numerics.petsc);
+  solver_ = std::make_unique<LinearSolver>(comm_, "rd_", rd_.petsc ? *rd_.petsc : scene_.numerics.petsc);
   if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
     solver_->reuse_factorisations(1e-10, 30, 8);
 

@@ -149,7 +149,7 @@ void read_reaction_diffusion(const Section& top, Scene& s)
     return;
   const Section rd = top.section("reaction_diffusion");
   rd.allow_only({"model", "species", "kinetics", "regularisation", "seed", "frozen_until",
-                 "chemotaxis"});
+                 "chemotaxis", "petsc"});
   ReactionDiffusion r;
   std::vector<std::string> models;
   for (std::size_t i = 0; i < generated::reaction_model_count; ++i)
@@ -218,6 +218,12 @@ void read_reaction_diffusion(const Section& top, Scene& s)
   r.frozen_until = rd.number("frozen_until", 0.0, non_negative());
   if (rd.has("chemotaxis"))
     r.chemotaxis = read_chemotaxis(rd, s);
+  if (rd.has("petsc"))
+  {
+    std::map<std::string, std::string> own;
+    read_petsc_options(rd.section("petsc"), own);
+    r.petsc = own;
+  }
   s.reaction_diffusion = r;
 }
 } // namespace cellphase::scene

@@ -298,6 +298,8 @@ struct ReactionDiffusion
   /// The shape and the flow stay frozen until this time (the pre-polarisation of 5.4.1).
   double frozen_until = 0;
   std::optional<Chemotaxis> chemotaxis;
+  /// Options of the species' solver (prefix rd_); absent: those of numerics.petsc.
+  std::optional<std::map<std::string, std::string>> petsc;
 };
 
 /// Orientation field of an active polar gel in the cell (chapter 6, (6.16)-(6.17)),

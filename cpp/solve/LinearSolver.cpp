@@ -164,6 +164,9 @@ void LinearSolver::solve(const dolfinx::la::Vector<T>& b, dolfinx::la::Vector<T>
   PetscErrorCode ierr = KSPSolve(ksp_, bv.vec(), xv.vec());
   KSPConvergedReason reason;
   KSPGetConvergedReason(ksp_, &reason);
+  PetscInt its = 0;
+  KSPGetIterationNumber(ksp_, &its);
+  iterations_ += int(its);
   if (ierr != 0 || reason < 0)
     throw SolverError("linear solver of " + what + " did not converge (KSP reason "
                       + std::to_string(int(reason)) + ", PETSc error " + std::to_string(int(ierr))

@@ -56,7 +56,8 @@ public:
   /// that needs more than `refactorise_after` factorises at the next set_operator.
   /// Only with MUMPS called directly (the default direct solver).
   void reuse_factorisations(double rtol, int max_iterations, int refactorise_after);
-  /// Factorisations and GMRES iterations since the last call (for the observables).
+  /// Factorisations and Krylov iterations (of the reuse GMRES or of a PETSc KSP) since
+  /// the last call (for the observables).
   std::pair<int, int> take_counts();
 
 private:
