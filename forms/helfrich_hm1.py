@@ -62,7 +62,15 @@ In_inv, r1, r2, a1, a2, a3 = constants("In_inv", "r1", "r2", "a1", "a2", "a3")
 load_int = In_inv * (dB_of(phi0, eps) * w_sum
                      + interaction_dw(phi0, eps, r1, r2, a1, a2, a3) * B_sum) * zeta * dxq
 
-forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int]
+# The same source as a P2 field (its L2 projection, with a1 phi_h of one's choice): with
+# interaction.refresh the module replaces the part of w that load_int made from phi^n by
+# the one of phi^{n+1} and the other cells' phi^{n+1} after the step, so that the flow's
+# next force (7.12) does not lag the cells' positions by a step.
+phi_h = Coefficient(V)
+L_int = In_inv * (dB_of(phi_h, eps) * w_sum
+                  + interaction_dw(phi_h, eps, r1, r2, a1, a2, a3) * B_sum) * q * dxq
+
+forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int, L_int]
 
 # The orientation field of an active polar gel in phi# (6.15): dE_P/dphi of (6.4),
 # (1/Pa) (-(c1/2) |P|^2 - beta div P) with P = P^{n+1} (section 6.3, step 3; (6.15) prints

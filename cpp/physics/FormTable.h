@@ -28,6 +28,8 @@ struct ModelForms
   ufcx_form* load_a = nullptr;       ///< penalties, evaluated at t^{n+1} (Helfrich models)
   /// Explicit interaction source of (7.11) (helfrich_hm1; coefficients u0, w_sum, B_sum)
   ufcx_form* load_int = nullptr;
+  /// The same source as a linear form on P2 (coefficients phi_h, w_sum, B_sum)
+  ufcx_form* L_int = nullptr;
   /// Explicit orientation-field source of (6.15) (helfrich_hm1; coefficients P_polar, u0)
   ufcx_form* load_polar = nullptr;
 };

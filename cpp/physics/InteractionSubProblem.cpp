@@ -172,6 +172,17 @@ StepTimings InteractionSubProblem::step(double)
   return t;
 }
 
+StepTimings InteractionSubProblem::finish_step()
+{
+  StepTimings t;
+  if (!interaction_ || !interaction_->refresh)
+    return t;
+  auto t0 = Clock::now();
+  update_sums();
+  t.assemble = seconds_since(t0);
+  return t;
+}
+
 void InteractionSubProblem::observe(Observation& row)
 {
   double energy = 0;

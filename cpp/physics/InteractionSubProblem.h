@@ -25,6 +25,9 @@ public:
   void declare(FieldRegistry& fields) override;
   void attach(FieldRegistry& fields) override;
   StepTimings step(double dt) override;
+  /// interaction.refresh: the sums again from every cell's phi^{n+1}, before the phase
+  /// fields' finish_step puts the source of this state into their w.
+  StepTimings finish_step() override;
   void observe(Observation& row) override;
 
 private:

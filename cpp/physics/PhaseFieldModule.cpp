@@ -105,6 +105,7 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
 
   u0_ = std::make_shared<Function>(W_);
   sources_.clear(); // built again on this mesh by set_interaction, set_orientation
+  interaction_rhs_.reset();
   dE_.reset();
   velocity_.reset();
   flowing_ = false;
@@ -189,9 +190,33 @@ void PhaseFieldModule::add_source(const ufcx_form* form, const std::string& term
 
 void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
                                        std::shared_ptr<const Function> B_sum,
-                                       const ConstantMap& parameters)
+                                       const ConstantMap& parameters, bool refresh)
 {
   add_source(forms_.load_int, "interaction", {{"w_sum", w_sum}, {"B_sum", B_sum}}, parameters);
+  if (!refresh)
+    return;
+  ConstantMap constants = constants_;
+  constants.insert(parameters.begin(), parameters.end());
+  interaction_rhs_ = compat::create_form(
+      *forms_.L_int, {V_}, {{"phi_h", fields_.at("phi")}, {"w_sum", w_sum}, {"B_sum", B_sum}},
+      constants);
+  interaction_projection_ = std::make_unique<L2Projection>(
+      *compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_), comm_, "interaction_");
+  interaction_of_step_ = std::make_shared<Function>(V_);
+  interaction_now_ = std::make_shared<Function>(V_);
+}
+
+void PhaseFieldModule::refresh_interaction()
+{
+  if (!interaction_rhs_)
+    return;
+  interaction_projection_->project(*interaction_rhs_, *interaction_now_,
+                                   "the interaction source (7.11) after the step");
+  auto w = fields_.at("w")->x()->mutable_array();
+  auto now = interaction_now_->x()->array();
+  auto before = interaction_of_step_->x()->array();
+  for (std::size_t i = 0; i < w.size(); ++i)
+    w[i] += now[i] - before[i];
 }
 
 void PhaseFieldModule::set_orientation(std::shared_ptr<const Function> P,
@@ -465,6 +490,9 @@ StepTimings PhaseFieldModule::step(double dt)
   }
   gather_state();
   update_multipliers(dt);
+  if (interaction_rhs_) // the part of w that this step's source makes (phi^n, the sums of now)
+    interaction_projection_->project(*interaction_rhs_, *interaction_of_step_,
+                                     "the interaction source (7.11)");
 
   // Taylor linearisation: the matrix depends on phi^n and is rebuilt every step (the
   // sparsity pattern and MUMPS' symbolic analysis are kept). Stabilised: built once,

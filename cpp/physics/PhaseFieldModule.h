@@ -55,7 +55,12 @@ public:
   /// updated in place before each step) and the constants In_inv, r1, r2, a1, a2, a3.
   /// Call after every attach.
   void set_interaction(std::shared_ptr<const Function> w_sum, std::shared_ptr<const Function> B_sum,
-                       const ConstantMap& parameters);
+                       const ConstantMap& parameters, bool refresh = false);
+  /// interaction.refresh: after the step (phi^{n+1} in place, the sums made again from the
+  /// other cells' phi^{n+1}), w += P(source now) - P(source of the step), P the L2
+  /// projection onto P2. The flow's next force then sees the interaction of the cells'
+  /// present positions. No-op without it.
+  void refresh_interaction();
   /// The orientation field's part of phi# (6.15), forms/helfrich_hm1.py's load_polar with
   /// P (vector P2 on this mesh, updated in place) and the constants Pa_inv, polar_c1,
   /// polar_beta. Call after every attach.
@@ -155,6 +160,10 @@ private:
   /// Explicit sources of the step's right-hand side: (7.11), (6.15); none by default.
   std::vector<std::shared_ptr<Form>> sources_;
   std::unique_ptr<dolfinx::la::Vector<T>> source_b_; ///< their vector
+  // interaction.refresh: the source (7.11) as P2 fields, of the step and after it
+  std::shared_ptr<Form> interaction_rhs_;
+  std::unique_ptr<L2Projection> interaction_projection_;
+  std::shared_ptr<Function> interaction_of_step_, interaction_now_;
   bool matrix_current_ = false; ///< stabilised scheme: matrix assembled and factorised
   ConstantMap constants_;
   std::shared_ptr<Constant> dt_, lam_v_, lam_a_;

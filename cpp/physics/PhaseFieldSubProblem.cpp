@@ -151,7 +151,8 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
     auto c = [](double v) { return std::make_shared<const Constant>(v); };
     module_.set_interaction(fields.get(sums + ".w_sum"), fields.get(sums + ".B_sum"),
                             {{"In_inv", c(1 / in.In)}, {"r1", c(in.r1)}, {"r2", c(in.r2)},
-                             {"a1", c(in.a1)}, {"a2", c(in.a2)}, {"a3", c(in.a3)}});
+                             {"a1", c(in.a1)}, {"a2", c(in.a2)}, {"a3", c(in.a3)}},
+                            in.refresh);
   }
   if (std::count(reads().begin(), reads().end(), "polar.P"))
   {
@@ -192,6 +193,19 @@ StepTimings PhaseFieldSubProblem::step(double dt)
   t0 = Clock::now();
   update_copies();
   t.assemble += in + seconds_since(t0); // the transfers between the meshes
+  return t;
+}
+
+StepTimings PhaseFieldSubProblem::finish_step()
+{
+  StepTimings t;
+  if (!scene_.interaction || !scene_.interaction->refresh)
+    return t;
+  auto t0 = Clock::now();
+  module_.refresh_interaction(); // the sums are those of phi^{n+1} (InteractionSubProblem)
+  if (own_)
+    update_copies(); // w on the shared mesh, which the flow reads
+  t.assemble = seconds_since(t0);
   return t;
 }
 

@@ -25,6 +25,7 @@ public:
   void connect(FieldRegistry& fields) override;
   void start() override;
   StepTimings step(double dt) override;
+  StepTimings finish_step() override;
   void observe(Observation& row) override;
   std::string health(const Observation& row) const override;
   void save(CheckpointData& data) const override;

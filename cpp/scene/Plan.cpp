@@ -32,6 +32,8 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
   const Model m = s.phase_field.model;
   const auto groups = cell_groups(s);
   PlanStep interaction{"interaction", "interaction between cells (7.5), (7.11)", {}, {}};
+  if (s.interaction && s.interaction->refresh)
+    interaction.description += "; sums and w made again from phi^{n+1} after the step (refresh)";
   for (const auto& g : groups)
   {
     PlanStep pf{g.step, std::string("phase-field module (") + to_string(m) + ")"

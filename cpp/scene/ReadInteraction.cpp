@@ -10,7 +10,7 @@ void read_interaction(const Section& top, Scene& s)
   if (!top.has("interaction"))
     return;
   const Section in = top.section("interaction");
-  in.allow_only({"potential", "In", "r1", "r2", "a1", "a2", "a3"});
+  in.allow_only({"potential", "In", "r1", "r2", "a1", "a2", "a3", "refresh"});
   if (s.phase_field.model != Model::helfrich_hm1)
     in.fail(std::string("is built for the H^-1 Helfrich flow of chapter 7 (phase_field.model: "
                         "helfrich_hm1); model ")
@@ -48,6 +48,7 @@ void read_interaction(const Section& top, Scene& s)
     i.a2 = in.number("a2", any());
     i.a3 = in.number("a3", positive());
   }
+  i.refresh = in.boolean("refresh", false);
   s.interaction = i;
 }
 } // namespace cellphase::scene

@@ -66,6 +66,9 @@ struct Interaction
 {
   double In = 0.01;
   double r1 = 1, r2 = 1, a1 = 0, a2 = 0, a3 = 1;
+  /// The interaction part of each cell's w (phi#, the flow's force 7.12) made again from
+  /// phi^{n+1} after every step; false: from phi^n, as the step's source (7.11) uses it.
+  bool refresh = false;
 };
 
 /// The phase-field / membrane model of section 2.5 and 3.4.1.
