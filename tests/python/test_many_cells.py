@@ -6,6 +6,7 @@ import pytest
 import yaml
 
 from conftest import EXE, require_exe, run_scene
+from test_checkpoint import assert_same_observables, restart_from_shorter_run
 
 TWO = {
     "domain": {"lower": [-1, -0.6], "upper": [1, 0.6], "resolution": [20, 12]},
@@ -226,20 +227,6 @@ def test_refreshed_interaction_restarts_bit_for_bit_and_changes_the_run_by_order
     # Restart from the checkpoint at step 4: the refreshed w is part of the state.
     cut = yaml.safe_load(yaml.safe_dump(scene))
     cut["numerics"]["end_time"] = 0.02
-    (tmp_path / "cut").mkdir()
-    run_scene(cut, tmp_path / "cut")
-    require_exe()
-    path = tmp_path / "cut" / "continue.yaml"
-    cont = yaml.safe_load(yaml.safe_dump(scene))
-    cont["output"] = {"every": 0, "progress": False, "directory": str(tmp_path / "cut" / "out"),
-                      "checkpoints": {"every": 4, "keep": 3}}
-    path.write_text(yaml.safe_dump(cont))
-    proc = subprocess.run([EXE, "run", str(path), "--restart", str(tmp_path / "cut" / "out")],
-                          capture_output=True, text=True, timeout=600)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    import csv
-    with open(tmp_path / "cut" / "out" / "observables.csv") as f:
-        rows = list(csv.DictReader(f))
-    for k in refreshed:
-        if not k.startswith("wall_"):
-            assert [float(r[k]) for r in rows] == refreshed[k], f"{k} differs after the restart"
+    (tmp_path / "restart").mkdir()
+    whole, continued, _ = restart_from_shorter_run(scene, cut, tmp_path / "restart")
+    assert_same_observables(whole, continued)
