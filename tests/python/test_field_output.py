@@ -7,11 +7,14 @@ the diffuse measure, which exceeds the area of the zero level set by O((eps kapp
 2D run (eps 0.08, kappa ~ 2) measures 1e-4 relative, the 3D run (eps 0.12, radii 0.45 and
 0.6, eps kappa ~ 0.5) 4-5 %, so the bounds are 1e-3 and 7e-2. The 3D contour is also held
 to the exact area of the initial spheroid (1 % measured, bound 2 %)."""
+import contextlib
 import json
 import os
 import shutil
+import socket
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -116,29 +119,50 @@ def own_frames(run):
     return list(cellphase_results.read_fields(run["dir"]))
 
 
-@pytest.fixture(scope="module")
-def display():
-    """An X display for ParaView's rendering: Xvfb, which reports the display number it
-    took once it accepts connections (-displayfd), so nothing races its start."""
-    if shutil.which("pvpython") is None or shutil.which("Xvfb") is None:
-        pytest.skip("pvpython or Xvfb missing (tests/run.sh installs them)")
+@contextlib.contextmanager
+def virtual_display():
+    """An X display for one ParaView session: Xvfb, which reports the display number it took
+    (-displayfd); its socket is then polled until it accepts a connection. One server per
+    session, so a server lost while the machine is loaded fails one probe, not the rest."""
     read_end, write_end = os.pipe()
     server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "800x600x24",
                                "-nolisten", "tcp"], pass_fds=[write_end],
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     os.close(write_end)
     with os.fdopen(read_end) as f:
         number = f.readline().strip()
-    assert number, "Xvfb did not start"
-    yield f":{number}"
-    server.terminate()
-    server.wait(timeout=30)
+    try:
+        assert number, "Xvfb did not start: " + server.communicate(timeout=30)[1]
+        deadline = time.monotonic() + 60
+        while True:
+            with socket.socket(socket.AF_UNIX) as probe:
+                try:
+                    probe.connect(f"/tmp/.X11-unix/X{number}")
+                    break
+                except OSError:
+                    assert server.poll() is None and time.monotonic() < deadline, \
+                        f"Xvfb :{number} never accepted a connection"
+                    time.sleep(0.1)
+        yield f":{number}"
+        assert server.poll() is None, f"Xvfb :{number} exited during the probe ({server.returncode})"
+    finally:
+        server.terminate()
+        server.wait(timeout=30)
+
+
+@pytest.fixture(scope="module")
+def display():
+    """Makes X displays for ParaView's rendering (virtual_display), or skips without Xvfb."""
+    if shutil.which("pvpython") is None or shutil.which("Xvfb") is None:
+        pytest.skip("pvpython or Xvfb missing (tests/run.sh installs them)")
+    return virtual_display
 
 
 def paraview(index, png_stem, display, field="phi"):
-    proc = subprocess.run(["pvpython", str(PROBE), str(index), str(png_stem), field],
-                          capture_output=True, text=True, timeout=600,
-                          env={**os.environ, "PYTHONPATH": "", "DISPLAY": display})
+    with display() as name:
+        proc = subprocess.run(["pvpython", str(PROBE), str(index), str(png_stem), field],
+                              capture_output=True, text=True, timeout=600,
+                              env={**os.environ, "PYTHONPATH": "", "DISPLAY": name})
     lines = [l for l in proc.stdout.splitlines() if l.startswith("PROBE ")]
     assert proc.returncode == 0 and lines, proc.stdout + proc.stderr
     assert "Invalid xpointer" not in proc.stderr and "error" not in proc.stderr.lower(), proc.stderr
