@@ -3,15 +3,12 @@
 // Fig. 7.7 of the signed distance d = -(eps/sqrt2) ln((1 + phi)/(1 - phi)) (7.3), which is
 // the Gaussian (7.2) for r1 = r2 = 1, a1 = 0. Zero outside the diffuse interface.
 #pragma once
+#include "scene/Scene.h"
 #include <cmath>
 
 namespace cellphase
 {
-struct InteractionShape
-{
-  double r1 = 1, r2 = 1; ///< repulsion strength and range (in eps^2)
-  double a1 = 0, a2 = 0, a3 = 1; ///< adhesion strength, position (in eps), range (in eps^2)
-};
+using InteractionShape = scene::InteractionPotential;
 
 inline double interaction_B(double phi, double eps) { return (phi * phi - 1) * (phi * phi - 1) / eps; }
 

@@ -1,6 +1,7 @@
 #include "physics/InteractionSubProblem.h"
 #include "mesh/OwnMesh.h"
 #include "physics/FormTable.h"
+#include "scene/InteractionPairs.h"
 #include "util/Clock.h"
 #include <algorithm>
 #include <limits>
@@ -19,10 +20,19 @@ InteractionSubProblem::InteractionSubProblem(scene::PlanStep step, const scene::
   double reach = 10;
   if (interaction_)
   {
-    const auto& in = *interaction_;
-    reach = std::max(reach, std::sqrt(27.7 * in.r2));
-    if (in.a1 != 0)
-      reach = std::max(reach, std::abs(in.a2) + std::sqrt(27.7 * in.a3));
+    potentials_ = scene::interaction_potentials(*interaction_);
+    for (const auto& p : potentials_)
+    {
+      reach = std::max(reach, std::sqrt(27.7 * p.r2));
+      if (p.a1 != 0)
+        reach = std::max(reach, std::abs(p.a2) + std::sqrt(27.7 * p.a3));
+    }
+    for (const auto& a : groups_)
+    {
+      pairs_.emplace_back();
+      for (const auto& b : groups_)
+        pairs_.back().push_back(scene::pair_interaction(*interaction_, a.name, b.name));
+    }
   }
   reach_level_ = std::max(-std::tanh(reach / std::sqrt(2.0)), -1 + 1e-12); // (7.3), d in eps
   for (const auto& g : groups_)
@@ -35,9 +45,11 @@ void InteractionSubProblem::declare(FieldRegistry& fields)
   if (!interaction_)
     return; // overlap only
   for (const auto& g : groups_)
-    for (const char* sum : {"w_sum", "B_sum"})
-      fields.declare({"interaction." + g.name + "." + sum, std::string(sum) + "_" + g.name,
-                      name(), FieldSpace::scalar_p2, Transfer::recompute, false});
+    for (std::size_t k = 0; k < potentials_.size(); ++k)
+      for (const std::string sum : {"w_sum", "B_sum"})
+        fields.declare({scene::interaction_sum_field(g.name, sum, k),
+                        sum + (k == 0 ? "" : std::to_string(k)) + "_" + g.name, name(),
+                        FieldSpace::scalar_p2, Transfer::recompute, false});
 }
 
 void InteractionSubProblem::attach(FieldRegistry& fields)
@@ -60,15 +72,19 @@ void InteractionSubProblem::attach(FieldRegistry& fields)
   {
     auto V = fields.get(phis_[i])->function_space(); // its own mesh, or the shared one
     const int dim = V->mesh()->topology().dim();
-    const std::string base = "interaction." + groups_[i].name + ".";
-    w_sum_.push_back(std::make_shared<Function>(V));
-    B_sum_.push_back(std::make_shared<Function>(V));
-    fields.set(base + "w_sum", w_sum_.back());
-    fields.set(base + "B_sum", B_sum_.back());
-    energy_.push_back(compat::create_form(
-        *observable_forms(dim).interaction_energy, {},
-        {{"phi", fields.get(phis_[i])}, {"w_sum", w_sum_.back()}},
-        {{"eps", std::make_shared<const Constant>(eps_)}}, V->mesh()));
+    w_sum_.emplace_back();
+    B_sum_.emplace_back();
+    for (std::size_t k = 0; k < potentials_.size(); ++k)
+    {
+      w_sum_[i].push_back(std::make_shared<Function>(V));
+      B_sum_[i].push_back(std::make_shared<Function>(V));
+      fields.set(scene::interaction_sum_field(groups_[i].name, "w_sum", k), w_sum_[i][k]);
+      fields.set(scene::interaction_sum_field(groups_[i].name, "B_sum", k), B_sum_[i][k]);
+      energy_.push_back(compat::create_form(
+          *observable_forms(dim).interaction_energy, {},
+          {{"phi", fields.get(phis_[i])}, {"w_sum", w_sum_[i][k]}},
+          {{"eps", std::make_shared<const Constant>(eps_)}}, V->mesh()));
+    }
   }
   update_sums(); // for the observables of this state
 }
@@ -139,23 +155,28 @@ void InteractionSubProblem::update_sums()
   const std::size_t n = groups_.size();
   boxes_ = band_boxes();
   const auto& boxes = boxes_;
-  scene::Interaction in = *interaction_;
-  const InteractionShape shape{in.r1, in.r2, in.a1, in.a2, in.a3};
   for (std::size_t i = 0; i < n; ++i)
   {
-    auto w = w_sum_[i]->x()->mutable_array();
-    auto B = B_sum_[i]->x()->mutable_array();
-    std::fill(w.begin(), w.end(), 0.0);
-    std::fill(B.begin(), B.end(), 0.0);
+    for (std::size_t k = 0; k < potentials_.size(); ++k)
+    {
+      w_sum_[i][k]->x()->set(0.0);
+      B_sum_[i][k]->x()->set(0.0);
+    }
     for (std::size_t j = 0; j < n; ++j)
       if (j != i && boxes_meet(boxes[i], boxes[j]))
       {
+        // The pair's potential k takes its sums; In_ij enters them as In / In_ij, so that
+        // the forms' 1/In makes 1/In_ij of (7.5) and (7.11) (exactly 1 for the scene's In).
+        const auto [k, In_ij] = pairs_[i][j];
+        const double scale = interaction_->In / In_ij;
+        auto w = w_sum_[i][k]->x()->mutable_array();
+        auto B = B_sum_[i][k]->x()->mutable_array();
         // Own meshes: only where both bands reach; the source (7.11) has a factor of cell i.
         const Samples s = sample(i, j, own_ ? common_box(boxes[i], boxes[j]) : boxes[j]);
         for (std::size_t m = 0; m < s.nodes.size(); ++m)
         {
-          w[s.nodes[m]] += interaction_w(s.values[m], eps_, shape);
-          B[s.nodes[m]] += interaction_B(s.values[m], eps_);
+          w[s.nodes[m]] += scale * interaction_w(s.values[m], eps_, potentials_[k]);
+          B[s.nodes[m]] += scale * interaction_B(s.values[m], eps_);
         }
       }
   }

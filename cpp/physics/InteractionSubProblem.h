@@ -1,6 +1,8 @@
 // Interaction between the cells' phase fields, section 7.1.2: before the phase fields step,
-// the sums over the other cells w_sum_i = sum_{j != i} w_j and B_sum_i = sum_{j != i}
-// B(phi_j) at the P2 nodes, from which each cell's equation takes its source (7.11). Only
+// the sums over the other cells w_sum_i = sum_{j != i} (In / In_ij) w_j and B_sum_i =
+// sum_{j != i} (In / In_ij) B(phi_j) at the P2 nodes, one pair of sums per potential (pairs
+// may have their own, interaction.pairs), from which each cell's equation takes its
+// source (7.11). Only
 // pairs whose diffuse bands (|phi| < 1) have overlapping bounding boxes are summed, so the
 // cost grows with the number of neighbours, not with N^2. Also observes, for any scene with
 // several phase fields, the interaction energy (7.5) and the largest overlap
@@ -9,6 +11,7 @@
 #include "compat/Resample.h"
 #include "core/SubProblem.h"
 #include "physics/InteractionFunction.h"
+#include "scene/InteractionPairs.h"
 #include "scene/Plan.h"
 #include <array>
 #include <memory>
@@ -57,8 +60,11 @@ private:
   std::vector<scene::CellGroup> groups_;
   std::vector<std::string> phis_;
   FieldRegistry* fields_ = nullptr;
-  std::vector<std::shared_ptr<Function>> w_sum_, B_sum_;
-  std::vector<std::shared_ptr<Form>> energy_;
+  std::vector<InteractionShape> potentials_; ///< scene::interaction_potentials
+  std::vector<std::vector<scene::PairInteraction>> pairs_; ///< [i][j]: of groups i and j
+  /// [i][k]: the sums of group i over the other cells with potential k
+  std::vector<std::vector<std::shared_ptr<Function>>> w_sum_, B_sum_;
+  std::vector<std::shared_ptr<Form>> energy_; ///< (7.5) of each group and potential
   bool own_; ///< each phase field on its own mesh (numerics.mesh.cell_meshes: own)
   double reach_level_; ///< phi at the distance beyond which w_j and B(phi_j) vanish
   std::vector<PointEvaluator> evaluate_;    ///< own meshes: phi_j, -1 beyond its mesh

@@ -105,7 +105,8 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
 
   u0_ = std::make_shared<Function>(W_);
   sources_.clear(); // built again on this mesh by set_interaction, set_orientation
-  interaction_rhs_.reset();
+  interaction_rhs_.clear();
+  interaction_projection_.reset();
   dE_.reset();
   velocity_.reset();
   flowing_ = false;
@@ -197,20 +198,30 @@ void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
     return;
   ConstantMap constants = constants_;
   constants.insert(parameters.begin(), parameters.end());
-  interaction_rhs_ = compat::create_form(
+  interaction_rhs_.push_back(compat::create_form(
       *forms_.L_int, {V_}, {{"phi_h", fields_.at("phi")}, {"w_sum", w_sum}, {"B_sum", B_sum}},
-      constants);
+      constants));
+  if (interaction_projection_)
+    return; // one projection of the sum over the potentials
   interaction_projection_ = std::make_unique<L2Projection>(
       *compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_), comm_, "interaction_");
   interaction_of_step_ = std::make_shared<Function>(V_);
   interaction_now_ = std::make_shared<Function>(V_);
 }
 
+std::vector<const Form*> PhaseFieldModule::interaction_sources() const
+{
+  std::vector<const Form*> forms;
+  for (const auto& form : interaction_rhs_)
+    forms.push_back(form.get());
+  return forms;
+}
+
 void PhaseFieldModule::refresh_interaction()
 {
-  if (!interaction_rhs_)
+  if (interaction_rhs_.empty())
     return;
-  interaction_projection_->project(*interaction_rhs_, *interaction_now_,
+  interaction_projection_->project(interaction_sources(), *interaction_now_,
                                    "the interaction source (7.11) after the step");
   auto w = fields_.at("w")->x()->mutable_array();
   auto now = interaction_now_->x()->array();
@@ -490,8 +501,8 @@ StepTimings PhaseFieldModule::step(double dt)
   }
   gather_state();
   update_multipliers(dt);
-  if (interaction_rhs_) // the part of w that this step's source makes (phi^n, the sums of now)
-    interaction_projection_->project(*interaction_rhs_, *interaction_of_step_,
+  if (!interaction_rhs_.empty()) // the part of w that this step's source makes (phi^n, sums now)
+    interaction_projection_->project(interaction_sources(), *interaction_of_step_,
                                      "the interaction source (7.11)");
 
   // Taylor linearisation: the matrix depends on phi^n and is rebuilt every step (the

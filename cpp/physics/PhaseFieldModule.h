@@ -53,7 +53,7 @@ public:
   /// Interaction with other cells (7.11), helfrich_hm1: the explicit source load_int of
   /// forms/helfrich_hm1.py from the other cells' sums w_sum, B_sum (P2 on this mesh,
   /// updated in place before each step) and the constants In_inv, r1, r2, a1, a2, a3.
-  /// Call after every attach.
+  /// Call after every attach, once for each potential (the sources add up).
   void set_interaction(std::shared_ptr<const Function> w_sum, std::shared_ptr<const Function> B_sum,
                        const ConstantMap& parameters, bool refresh = false);
   /// interaction.refresh: after the step (phi^{n+1} in place, the sums made again from the
@@ -161,7 +161,8 @@ private:
   std::vector<std::shared_ptr<Form>> sources_;
   std::unique_ptr<dolfinx::la::Vector<T>> source_b_; ///< their vector
   // interaction.refresh: the source (7.11) as P2 fields, of the step and after it
-  std::shared_ptr<Form> interaction_rhs_;
+  std::vector<std::shared_ptr<Form>> interaction_rhs_; ///< one per potential
+  std::vector<const Form*> interaction_sources() const;
   std::unique_ptr<L2Projection> interaction_projection_;
   std::shared_ptr<Function> interaction_of_step_, interaction_now_;
   bool matrix_current_ = false; ///< stabilised scheme: matrix assembled and factorised

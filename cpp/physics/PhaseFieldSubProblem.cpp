@@ -3,6 +3,7 @@
 #include "mesh/FieldTransfer.h"
 #include "mesh/OwnMesh.h"
 #include "physics/FormTable.h"
+#include "scene/InteractionPairs.h"
 #include "util/Clock.h"
 #include <algorithm>
 #include <cmath>
@@ -144,15 +145,21 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
     for (int d = 0; d < mesh->topology().dim(); ++d)
       velocity_forms_.push_back(compat::create_form(*forms.phase_velocity[d], {}, coeffs, {}, mesh));
   }
-  const std::string sums = "interaction." + group_.name;
-  if (fields.declared(sums + ".w_sum"))
+  if (fields.declared(scene::interaction_sum_field(group_.name, "w_sum", 0)))
   {
+    // One source (7.11) per potential, each from the sums over the pairs that have it.
     const auto& in = *scene_.interaction;
     auto c = [](double v) { return std::make_shared<const Constant>(v); };
-    module_.set_interaction(fields.get(sums + ".w_sum"), fields.get(sums + ".B_sum"),
-                            {{"In_inv", c(1 / in.In)}, {"r1", c(in.r1)}, {"r2", c(in.r2)},
-                             {"a1", c(in.a1)}, {"a2", c(in.a2)}, {"a3", c(in.a3)}},
-                            in.refresh);
+    const auto potentials = scene::interaction_potentials(in);
+    for (std::size_t k = 0; k < potentials.size(); ++k)
+    {
+      const auto& p = potentials[k];
+      module_.set_interaction(fields.get(scene::interaction_sum_field(group_.name, "w_sum", k)),
+                              fields.get(scene::interaction_sum_field(group_.name, "B_sum", k)),
+                              {{"In_inv", c(1 / in.In)}, {"r1", c(p.r1)}, {"r2", c(p.r2)},
+                               {"a1", c(p.a1)}, {"a2", c(p.a2)}, {"a3", c(p.a3)}},
+                              in.refresh);
+    }
   }
   if (std::count(reads().begin(), reads().end(), "polar.P"))
   {

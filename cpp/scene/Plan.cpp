@@ -1,4 +1,5 @@
 #include "scene/Plan.h"
+#include "scene/InteractionPairs.h"
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -34,6 +35,11 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
   PlanStep interaction{"interaction", "interaction between cells (7.5), (7.11)", {}, {}};
   if (s.interaction && s.interaction->refresh)
     interaction.description += "; sums and w made again from phi^{n+1} after the step (refresh)";
+  if (s.interaction && !s.interaction->pairs.empty())
+    interaction.description += "; " + std::to_string(s.interaction->pairs.size())
+                               + " pair(s) with In or potential of their own ("
+                               + std::to_string(interaction_potentials(*s.interaction).size())
+                               + " potential(s), one source each)";
   for (const auto& g : groups)
   {
     PlanStep pf{g.step, std::string("phase-field module (") + to_string(m) + ")"
@@ -50,10 +56,13 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     }
     if (s.interaction)
     {
-      const std::string sums = "interaction." + g.name;
-      pf.reads.insert(pf.reads.end(), {sums + ".w_sum", sums + ".B_sum"});
       interaction.reads.push_back(state_field(s, g, "phi"));
-      interaction.writes.insert(interaction.writes.end(), {sums + ".w_sum", sums + ".B_sum"});
+      for (std::size_t k = 0; k < interaction_potentials(*s.interaction).size(); ++k)
+        for (const char* sum : {"w_sum", "B_sum"})
+        {
+          pf.reads.push_back(interaction_sum_field(g.name, sum, k));
+          interaction.writes.push_back(interaction_sum_field(g.name, sum, k));
+        }
     }
     steps[pf.name] = pf;
   }

@@ -60,12 +60,31 @@ struct Cell
   std::optional<double> viscosity;
 };
 
-/// Interaction between the cells' phase fields, (7.5) and (7.11), with one interaction
-/// number In for all pairs and the interaction function w-bar of Fig. 7.7.
+/// The interaction function w-bar of Fig. 7.7: repulsion strength r1 and range r2 (in
+/// eps^2), adhesion strength a1, position a2 (in eps) and range a3 (in eps^2); the Gaussian
+/// w of (7.2) is r1 = r2 = 1, a1 = 0.
+struct InteractionPotential
+{
+  double r1 = 1, r2 = 1, a1 = 0, a2 = 0, a3 = 1;
+  bool operator==(const InteractionPotential&) const = default;
+};
+
+/// The interaction of one pair of phase fields (named by their groups), In_ij = In_ji of
+/// (7.5) and (7.11) and the potential that both cells' w take for the other.
+struct InteractionPair
+{
+  std::string first, second;
+  double In = 0.01;
+  InteractionPotential potential;
+};
+
+/// Interaction between the cells' phase fields, (7.5) and (7.11): the interaction number
+/// In and the potential of every pair, except the pairs listed with their own.
 struct Interaction
 {
   double In = 0.01;
-  double r1 = 1, r2 = 1, a1 = 0, a2 = 0, a3 = 1;
+  InteractionPotential potential;
+  std::vector<InteractionPair> pairs;
   /// The interaction part of each cell's w (phi#, the flow's force 7.12) made again from
   /// phi^{n+1} after every step; false: from phi^n, as the step's source (7.11) uses it.
   bool refresh = false;
