@@ -56,12 +56,13 @@ Under mpirun send SIGUSR1 to mpirun (it forwards it to every rank; SIGTERM makes
 the ranks at once), e.g. #SBATCH --signal=B:USR1@300 with Slurm.
 A run that fails numerically (NaN, diverging solver, phi beyond numerics.limits.phi_bound,
 volume drift beyond numerics.limits.volume_drift) writes its last good state as a
-checkpoint and as fields, and stops.
+checkpoint and as fields, and stops. numerics.stop_when_settled ends a run before
+end_time once an observable has settled (its final state written and checkpointed).
 Run in parallel with: mpirun -n 2 -x OPENBLAS_NUM_THREADS=1 cellphase run SCENE
 (one BLAS thread per rank). A rank with a CPU to spare assembles part of the Helfrich step
 on a second thread (same results); OMP_NUM_THREADS=1 keeps it on one.
 
-Exit status: 0 success, 2 invalid scene or arguments (or no valid checkpoint to restart
+Exit status: 0 success (end_time reached or settled), 2 invalid scene or arguments (or no valid checkpoint to restart
 from), 3 numerical failure, 4 other errors (for example an output directory that cannot be
 written), 5 stopped by SIGINT, SIGTERM or SIGUSR1 after writing a checkpoint.
 )";
@@ -181,6 +182,12 @@ int run(const cellphase::scene::Scene& scene, bool restart)
     if (rank == 0)
       std::printf("cellphase: %s\n", e.what());
     status = 5;
+  }
+  catch (const cellphase::scene::SceneError& e) // found once the run knows its columns
+  {
+    if (rank == 0)
+      std::fprintf(stderr, "error: %s\n", e.what());
+    status = 2;
   }
   catch (const cellphase::RestartError& e)
   {

@@ -330,6 +330,15 @@ void Simulation::open_output(const LoopState& start)
   const auto& out = scene_.output;
   csv_ = std::make_unique<ObservablesCsv>(out.directory + "/observables.csv", scene_.domain.dim,
                                           comm_, restart_ ? start.step : -1);
+  if (scene_.numerics.stop_when_settled)
+  {
+    settled_watch_ = std::make_unique<SettledWatch>(*scene_.numerics.stop_when_settled,
+                                                    scene_.source);
+    MPI_Barrier(comm_); // rank 0 has cut observables.csv back to the checkpoint
+    if (restart_)
+      settled_watch_->restore(read_observable(out.directory + "/observables.csv",
+                                              scene_.numerics.stop_when_settled->observable));
+  }
   make_writers(start); // output.every = 0 still writes the final state
   int ranks;
   MPI_Comm_size(comm_, &ranks);
@@ -583,7 +592,23 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
   if ((every > 0 && at.step % every == 0) || at.step == last_step_)
     write_fields(at.time, at.step);
   r.output_time = seconds_since(t0);
+  if (settled_watch_)
+    settled_watch_->add(observable_columns(r, scene_.domain.dim));
   csv_->write(r);
+}
+
+std::optional<std::string> Simulation::settled_now() const
+{
+  if (!settled_watch_)
+    return std::nullopt;
+  std::string why = rank_of(comm_) == 0 ? settled_watch_->settled().value_or("") : "";
+  int length = int(why.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm_);
+  why.resize(std::size_t(length));
+  MPI_Bcast(why.data(), length, MPI_CHAR, 0, comm_);
+  if (why.empty())
+    return std::nullopt;
+  return why;
 }
 
 void Simulation::run()
@@ -634,6 +659,20 @@ void Simulation::run()
     std::string checkpoint;
     if (every > 0 && (n == steps || n % every == 0))
       checkpoint = save_checkpoint(at);
+    if (const auto why = n < steps ? settled_now() : std::nullopt)
+    {
+      // Settled before end_time: the final state is written and checkpointed as at the end.
+      const int out_every = scene_.output.every;
+      if (!(out_every > 0 && n % out_every == 0))
+        write_fields(at.time, n);
+      if (every > 0 && checkpoint.empty())
+        save_checkpoint(at);
+      progress.finish(n, at.time);
+      log("  settled at step %d (t = %g), before end_time %g: %s\n", n, at.time, nu.end_time,
+          why->c_str());
+      log_summary();
+      return;
+    }
     if (n < steps && stop_signal::requested(comm_))
     {
       if (checkpoint.empty())
@@ -650,6 +689,11 @@ void Simulation::run()
     }
   }
   progress.finish(steps, at.time);
+  log_summary();
+}
+
+void Simulation::log_summary() const
+{
   int factorisations = 0;
   for (const auto& sub : split_)
     factorisations += sub->factorisations();

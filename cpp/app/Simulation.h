@@ -4,6 +4,7 @@
 // the fields they declare (core/FieldRegistry.h).
 #pragma once
 #include "app/CheckpointStore.h"
+#include "app/SettledWatch.h"
 #include "core/FieldRegistry.h"
 #include "core/SubProblem.h"
 #include "io/FieldOutput.h"
@@ -12,6 +13,7 @@
 #include "mesh/OwnMesh.h"
 #include "scene/Scene.h"
 #include <map>
+#include <optional>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -110,6 +112,11 @@ private:
   std::vector<SubProblem*> attach_order_;
   CheckpointStore checkpoints_;
   std::unique_ptr<ObservablesCsv> csv_;
+  std::unique_ptr<SettledWatch> settled_watch_; ///< numerics.stop_when_settled
+  /// Why the watched observable has settled at the last row (rank 0 decides for all).
+  std::optional<std::string> settled_now() const;
+  /// The last lines of a run: factorisations and where the output is.
+  void log_summary() const;
   std::map<std::string, std::unique_ptr<FieldOutput>> writers_; ///< by mesh key
   int last_step_ = 0;
   const SubProblem* solving_ = nullptr; ///< the sub-problem being stepped

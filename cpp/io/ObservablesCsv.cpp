@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -9,16 +10,6 @@ namespace cellphase
 {
 namespace
 {
-const char* header = "time,step,volume,surface,helfrich_energy,total_energy,energy_ch,"
-                     "center_x,center_y,center_z,circularity,phi_min,phi_max,lambda_volume,"
-                     "lambda_area,dofs,remesh_volume_change,wall_assembly,wall_factorise,"
-                     "wall_solve,wall_remesh,wall_output,"
-                     // appended with the flow coupling; readers find columns by name
-                     "kinetic_energy,total_energy_kinetic,cell_velocity_x,cell_velocity_y,"
-                     "cell_velocity_z,rise_velocity,inclination_deg,wall_flow,"
-                     // the membrane's local stretching; the mean multiplier of (3.67)
-                     "stretch_min,stretch_max,tension_mean";
-
 /// Rows of an existing file up to `step` (complete lines only: a killed run may have left
 /// half a row), written back atomically. Returns false if there is no such file.
 bool cut_back(const std::string& path, int step)
@@ -64,34 +55,93 @@ ObservablesCsv::~ObservablesCsv()
     std::fclose(file_);
 }
 
+std::vector<ObservableColumn> observable_columns(const StepRecord& r, int dim)
+{
+  const auto& v = r.values;
+  const double z = dim == 3 ? v.center[2] : 0.0, vz = dim == 3 ? v.cell_velocity[2] : 0.0;
+  const char *g15 = "%.15g", *g10 = "%.10g", *g4 = "%.4g", *integer = nullptr;
+  std::vector<ObservableColumn> c{
+      {"time", r.time, g10}, {"step", double(r.step), integer},
+      {"volume", v.volume, g15}, {"surface", v.surface, g15},
+      {"helfrich_energy", v.helfrich, g15}, {"total_energy", v.total_energy, g15},
+      {"energy_ch", v.energy_ch, g15}, {"center_x", v.center[0], g15},
+      {"center_y", v.center[1], g15}, {"center_z", z, g15},
+      {"circularity", v.circularity, g15}, {"phi_min", v.phi_min, g10},
+      {"phi_max", v.phi_max, g10}, {"lambda_volume", r.lam_v, g10},
+      {"lambda_area", r.lam_a, g10}, {"dofs", double(r.dofs), integer},
+      {"remesh_volume_change", r.remesh_volume_change, "%.3e"},
+      {"wall_assembly", r.timings.assemble, g4}, {"wall_factorise", r.timings.factorise, g4},
+      {"wall_solve", r.timings.solve, g4}, {"wall_remesh", r.remesh_time, g4},
+      {"wall_output", r.output_time, g4},
+      // appended with the flow coupling; readers find columns by name
+      {"kinetic_energy", v.kinetic_energy, g15},
+      {"total_energy_kinetic", v.total_with_kinetic, g15},
+      {"cell_velocity_x", v.cell_velocity[0], g15}, {"cell_velocity_y", v.cell_velocity[1], g15},
+      {"cell_velocity_z", vz, g15}, {"rise_velocity", v.cell_velocity[1], g15},
+      {"inclination_deg", v.inclination_deg, g10}, {"wall_flow", r.timings.flow, g4},
+      // the membrane's local stretching; the mean multiplier of (3.67)
+      {"stretch_min", v.stretch_min, g10}, {"stretch_max", v.stretch_max, g10},
+      {"tension_mean", v.tension_mean, g10}};
+  for (const auto& [name, value] : r.extra)
+    c.push_back({name, value, g15});
+  return c;
+}
+
 void ObservablesCsv::write(const StepRecord& r)
 {
   if (!file_)
     return;
+  const auto columns = observable_columns(r, dim_);
   if (header_due_)
   {
-    std::fputs(header, file_);
-    for (const auto& [name, value] : r.extra)
-      std::fprintf(file_, ",%s", name.c_str());
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      std::fprintf(file_, i ? ",%s" : "%s", columns[i].name.c_str());
     std::fputs("\n", file_);
     header_due_ = false;
   }
-  const auto& v = r.values;
-  std::fprintf(file_,
-               "%.10g,%d,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.10g,"
-               "%.10g,%.10g,%lld,%.3e,%.4g,%.4g,%.4g,%.4g,%.4g,"
-               "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.10g,%.4g,%.10g,%.10g,%.10g",
-               r.time, r.step, v.volume, v.surface, v.helfrich, v.total_energy, v.energy_ch,
-               v.center[0], v.center[1], dim_ == 3 ? v.center[2] : 0.0, v.circularity,
-               v.phi_min, v.phi_max, r.lam_v, r.lam_a, (long long)r.dofs,
-               r.remesh_volume_change, r.timings.assemble, r.timings.factorise, r.timings.solve,
-               r.remesh_time, r.output_time, v.kinetic_energy, v.total_with_kinetic,
-               v.cell_velocity[0], v.cell_velocity[1], dim_ == 3 ? v.cell_velocity[2] : 0.0,
-               v.cell_velocity[1], v.inclination_deg, r.timings.flow, v.stretch_min, v.stretch_max,
-               v.tension_mean);
-  for (const auto& [name, value] : r.extra)
-    std::fprintf(file_, ",%.15g", value);
+  for (std::size_t i = 0; i < columns.size(); ++i)
+  {
+    if (i)
+      std::fputc(',', file_);
+    if (columns[i].format)
+      std::fprintf(file_, columns[i].format, columns[i].value);
+    else
+      std::fprintf(file_, "%lld", (long long)columns[i].value);
+  }
   std::fputs("\n", file_);
   std::fflush(file_);
+}
+
+std::vector<std::pair<double, double>> read_observable(const std::string& path,
+                                                      const std::string& column)
+{
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::pair<double, double>> rows;
+  if (!std::getline(in, line))
+    return rows;
+  std::size_t index = 0;
+  bool found = false;
+  {
+    std::stringstream header(line);
+    for (std::string name; std::getline(header, name, ','); ++index)
+      if (name == column)
+      {
+        found = true;
+        break;
+      }
+  }
+  if (!found)
+    return rows;
+  while (std::getline(in, line))
+  {
+    std::stringstream row(line);
+    std::vector<std::string> cells;
+    for (std::string cell; std::getline(row, cell, ',');)
+      cells.push_back(cell);
+    if (cells.size() > index)
+      rows.emplace_back(std::atof(cells[0].c_str()), std::atof(cells[index].c_str()));
+  }
+  return rows;
 }
 } // namespace cellphase

@@ -24,6 +24,21 @@ struct StepRecord
   std::vector<std::pair<std::string, double>> extra;
 };
 
+/// One column of a row: its name, value and printf format (nullptr: an integer).
+struct ObservableColumn
+{
+  std::string name;
+  double value;
+  const char* format;
+};
+/// The columns of observables.csv for a row, in file order: the standard ones, then the
+/// sub-problems' (r.extra).
+std::vector<ObservableColumn> observable_columns(const StepRecord& r, int dim);
+/// (time, value) of each row of an observables.csv for one column; empty if there is no
+/// such file or column.
+std::vector<std::pair<double, double>> read_observable(const std::string& path,
+                                                      const std::string& column);
+
 class ObservablesCsv
 {
 public:

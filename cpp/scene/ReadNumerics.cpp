@@ -36,6 +36,32 @@ void read_mesh(const Section& m, Mesh& mesh)
     mesh.own_margin = m.number("own_margin", positive());
 }
 
+/// numerics.stop_when_settled; the observable is checked against the run's columns when
+/// the first row is made (they depend on the sub-problems).
+std::optional<SettledStop> read_settled_stop(const Section& n, double end_time)
+{
+  if (!n.has("stop_when_settled"))
+    return std::nullopt;
+  const Section w = n.section("stop_when_settled");
+  w.allow_only({"observable", "over", "relative", "absolute", "after"});
+  for (const char* key : {"observable", "over"})
+    if (!w.has(key))
+      w.fail(key, "missing; e.g. stop_when_settled: {observable: cell_velocity_x, over: 5, "
+                  "relative: 0.01}");
+  SettledStop stop;
+  stop.observable = w.string("observable", "");
+  stop.over = w.number("over", positive());
+  if (stop.over >= end_time)
+    w.fail("over", "found " + fmt(stop.over) + ", expected less than numerics.end_time ("
+                       + fmt(end_time) + "): the window must fit into the run");
+  stop.relative = w.number("relative", stop.relative, non_negative());
+  stop.absolute = w.number("absolute", stop.absolute, non_negative());
+  if (stop.relative == 0 && stop.absolute == 0)
+    w.fail("relative", "and absolute are both 0: nothing would ever count as settled");
+  stop.after = w.number("after", 0.0, non_negative());
+  return stop;
+}
+
 void read_limits(const Section& l, Model model, Limits& limits)
 {
   l.allow_only({"phi_bound", "volume_drift"});
@@ -55,7 +81,7 @@ void read_numerics(const Section& top, Scene& s)
                          "numerics.end_time");
   const Section n = top.section("numerics");
   n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "limits",
-                "petsc", "split", "solver"});
+                "petsc", "split", "solver", "stop_when_settled"});
   Numerics& num = s.numerics;
   num.epsilon = n.number("epsilon", positive());
   num.dt = n.number("dt", positive());
@@ -94,6 +120,7 @@ void read_numerics(const Section& top, Scene& s)
                                + " (phi must be -1 to 2e-5 at the edge of a cell's mesh)");
   }
   read_limits(n.section("limits"), s.phase_field.model, num.limits);
+  num.stop_when_settled = read_settled_stop(n, num.end_time);
   read_petsc_options(n.section("petsc"), num.petsc);
   if (n.has("split"))
     num.split = n.strings("split"); // checked against the plan in check_split

@@ -171,6 +171,16 @@ struct Limits
   std::optional<double> volume_drift;  ///< stop when |V - V0| / V0 exceeds this
 };
 
+/// Stop before end_time once an observable has settled: over the last `over` time units
+/// it varied (max - min) by at most max(relative |value now|, absolute).
+struct SettledStop
+{
+  std::string observable; ///< a column of observables.csv
+  double over = 1;
+  double relative = 1e-3, absolute = 0;
+  double after = 0; ///< not before this time
+};
+
 struct Numerics
 {
   double epsilon = 0.03;
@@ -186,6 +196,7 @@ struct Numerics
   /// Linear solves: a direct factorisation of every new matrix, or factors reused as the
   /// preconditioner of GMRES while they serve (solve/LinearSolver, reuse_factorisations).
   enum class Solver { direct, reuse } solver = Solver::direct;
+  std::optional<SettledStop> stop_when_settled;
 };
 
 struct Checkpoints
