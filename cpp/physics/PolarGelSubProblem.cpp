@@ -1,4 +1,5 @@
 #include "physics/PolarGelSubProblem.h"
+#include "physics/FlowVelocity.h"
 #include "scene/Plan.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
@@ -164,8 +165,7 @@ void PolarGelSubProblem::attach(FieldRegistry& fields)
     P_cell_[i] = compat::create_form(*forms_.P_cell[i], {}, coeffs, constants_, mesh);
   cell_weight_ = compat::create_form(*flow_forms(scene_.domain.dim).phase_weight, {},
                                      {{"phi", phi_}}, {}, mesh);
-  a_.reset();
-  L_.reset();
+  system_.reset(); // on this mesh, built by connect
   force_.reset();
   sharp_L_.reset(); // on this mesh's P, built at the next projection
 }
@@ -184,26 +184,12 @@ void PolarGelSubProblem::project_sharp()
 
 void PolarGelSubProblem::connect(FieldRegistry& fields)
 {
-  auto mesh = phi_->function_space()->mesh();
-  if (auto v = fields.find("flow.v"))
-    v_ = v;
-  else
-  {
-    auto zero = std::make_shared<Function>(fields.space("", FieldSpace::vector_p2));
-    zero->x()->set(0.0);
-    v_ = zero;
-  }
+  v_ = flow_velocity_or_zero(fields);
   const CoefficientMap coeffs{{"u0", u0_}, {"phi", phi_}, {"v", v_}};
-  a_ = compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_);
-  L_ = compat::create_form(*forms_.L, {W_}, coeffs, constants_);
-  const auto box = compat::bounding_box(*mesh);
-  constraint_ = std::make_unique<PeriodicConstraint>(W_, box[0], box[1], scene_.domain.periodic);
-  A_ = std::make_unique<dolfinx::la::petsc::Matrix>(constraint_->create_matrix(*a_));
-  b_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
-  x_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
-  solver_ = std::make_unique<LinearSolver>(comm_, "polar_", scene_.numerics.petsc);
-  if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
-    solver_->reuse_factorisations(1e-10, 30, 8);
+  system_ = std::make_unique<PeriodicSystem>(
+      compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_),
+      compat::create_form(*forms_.L, {W_}, coeffs, constants_), scene_, comm_, "polar_",
+      scene_.numerics.petsc);
 
   if (scene_.flow)
   {
@@ -227,9 +213,8 @@ void PolarGelSubProblem::update_force()
 
 StepTimings PolarGelSubProblem::step(double dt)
 {
-  if (!a_)
+  if (!system_)
     throw std::logic_error("polar_gel: step before connect");
-  StepTimings t;
   auto t0 = Clock::now();
   dt_->value[0] = dt;
   {
@@ -243,19 +228,14 @@ StepTimings PolarGelSubProblem::step(double dt)
     }
   }
   // The matrix holds v^{n+1}, phi^n and the linearisation at P^n: new every step.
-  constraint_->assemble_matrix(A_->mat(), *a_, {});
-  constraint_->assemble_vector(*b_, *L_, a_, {});
-  t.assemble = seconds_since(t0);
-  t.factorise = solver_->set_operator(A_->mat());
-  auto t2 = Clock::now();
-  solver_->solve(*b_, *x_, "the orientation field (6.16)-(6.17) of forms/polar_gel.py");
-  constraint_->backsubstitute(*x_);
-  t.solve = seconds_since(t2);
-  const auto [factorised, iterations] = solver_->take_counts();
+  const double before = seconds_since(t0);
+  StepTimings t = system_->solve("the orientation field (6.16)-(6.17) of forms/polar_gel.py");
+  t.assemble += before;
+  const auto [factorised, iterations] = system_->take_counts();
   factorisations_ += factorised;
   last_iterations_ = iterations;
   {
-    auto x = x_->array();
+    auto x = system_->solution();
     auto ps = P_sharp_->x()->mutable_array();
     auto p = P_->x()->mutable_array();
     for (std::size_t d = 0; d < P_to_mixed_.size(); ++d)

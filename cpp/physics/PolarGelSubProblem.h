@@ -5,12 +5,11 @@
 // (6.11), that the flow adds at the next step (polar.force); the phase field adds the
 // orientation terms of phi# (6.15) from polar.P.
 #pragma once
-#include "compat/Periodic.h"
 #include "core/SubProblem.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
 #include "solve/L2Projection.h"
-#include "solve/LinearSolver.h"
+#include "solve/PeriodicSystem.h"
 #include <memory>
 #include <vector>
 
@@ -58,14 +57,10 @@ private:
   std::vector<std::int32_t> sharp_to_mixed_, P_to_mixed_; ///< V dof (unrolled) -> W dof
   std::shared_ptr<Function> u0_;          ///< (P#^n, P^n)
   std::shared_ptr<const Function> v_;     ///< the flow's v^{n+1}, or zero
-  std::shared_ptr<Form> a_, L_;
   std::shared_ptr<Form> energy_, dissipation_;
   std::array<std::shared_ptr<Form>, 2> P_cell_;
   std::shared_ptr<Form> cell_weight_;     ///< int phi~
-  std::unique_ptr<PeriodicConstraint> constraint_;
-  std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
-  std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
-  std::unique_ptr<LinearSolver> solver_;
+  std::unique_ptr<PeriodicSystem> system_; ///< built by connect on each mesh
   int factorisations_ = 0;
   double last_wall_ = 0; ///< wall time of the last step (observables column wall_polar)
   int last_iterations_ = 0;

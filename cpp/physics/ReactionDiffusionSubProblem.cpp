@@ -1,5 +1,6 @@
 #include "physics/ReactionDiffusionSubProblem.h"
 #include "scene/Formula.h"
+#include "physics/FlowVelocity.h"
 #include "scene/Plan.h"
 #include "solve/Assemble.h"
 #include "util/Clock.h"
@@ -156,34 +157,18 @@ void ReactionDiffusionSubProblem::attach(FieldRegistry& fields)
       }
   }
   kept_ = amounts();
-  a_.reset();
-  L_.reset();
+  system_.reset(); // on this mesh, built by connect
   force_.reset();
 }
 
 void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
 {
-  auto V = phi_->function_space();
-  auto mesh = V->mesh();
-  if (auto v = fields.find("flow.v"))
-    v_ = v;
-  else
-  {
-    auto zero = std::make_shared<Function>(fields.space("", FieldSpace::vector_p2));
-    zero->x()->set(0.0);
-    v_ = zero;
-  }
+  v_ = flow_velocity_or_zero(fields);
   CoefficientMap coeffs{{"u0", u0_}, {"phi", phi_}, {"phi_old", phi_old_}, {"v", v_}};
-  a_ = compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_);
-  L_ = compat::create_form(*forms_.L, {W_}, coeffs, constants_);
-  const auto box = compat::bounding_box(*mesh);
-  constraint_ = std::make_unique<PeriodicConstraint>(W_, box[0], box[1], scene_.domain.periodic);
-  A_ = std::make_unique<dolfinx::la::petsc::Matrix>(constraint_->create_matrix(*a_));
-  b_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
-  x_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
-  solver_ = std::make_unique<LinearSolver>(comm_, "rd_", rd_.petsc ? *rd_.petsc : scene_.numerics.petsc);
-  if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
-    solver_->reuse_factorisations(1e-10, 30, 8);
+  system_ = std::make_unique<PeriodicSystem>(
+      compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_),
+      compat::create_form(*forms_.L, {W_}, coeffs, constants_), scene_, comm_, "rd_",
+      rd_.petsc ? *rd_.petsc : scene_.numerics.petsc);
 
   if (scene::has_protrusion(scene_))
   {
@@ -240,7 +225,7 @@ void ReactionDiffusionSubProblem::update_signal(double t)
 
 StepTimings ReactionDiffusionSubProblem::step(double dt)
 {
-  if (!a_)
+  if (!system_)
     throw std::logic_error("reaction_diffusion: step before connect");
   StepTimings t;
   auto t0 = Clock::now();
@@ -256,18 +241,13 @@ StepTimings ReactionDiffusionSubProblem::step(double dt)
     }
   }
   // The matrix holds phi^{n+1}, v^{n+1} and the kinetics at c^n: new every step.
-  constraint_->assemble_matrix(A_->mat(), *a_, {});
-  constraint_->assemble_vector(*b_, *L_, a_, {});
-  t.assemble = seconds_since(t0);
-  t.factorise = solver_->set_operator(A_->mat());
-  auto t2 = Clock::now();
-  solver_->solve(*b_, *x_, "the reaction-diffusion system of forms/" + rd_.model + ".py");
-  constraint_->backsubstitute(*x_);
-  t.solve = seconds_since(t2);
-  const auto [factorised, iterations] = solver_->take_counts();
+  const double before = seconds_since(t0);
+  t = system_->solve("the reaction-diffusion system of forms/" + rd_.model + ".py");
+  t.assemble += before;
+  const auto [factorised, iterations] = system_->take_counts();
   factorisations_ += factorised;
   last_iterations_ = iterations;
-  auto x = x_->array();
+  auto x = system_->solution();
   for (std::size_t i = 0; i < species_.size(); ++i)
   {
     auto c = species_[i]->x()->mutable_array();

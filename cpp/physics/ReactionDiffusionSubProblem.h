@@ -5,12 +5,11 @@
 // protrusion force -(1/Fa) c grad phi (5.7) of the model's protrusion species that the
 // flow adds at the next step (rd.force).
 #pragma once
-#include "compat/Periodic.h"
 #include "core/SubProblem.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
 #include "solve/L2Projection.h"
-#include "solve/LinearSolver.h"
+#include "solve/PeriodicSystem.h"
 #include <array>
 #include <memory>
 #include <utility>
@@ -65,12 +64,8 @@ private:
   std::vector<std::shared_ptr<Function>> species_; ///< standalone, in the registry
   std::shared_ptr<Function> u_, u0_;       ///< the mixed solution and (c^n)
   std::shared_ptr<const Function> v_;      ///< the flow's v^{n+1}, or zero
-  std::shared_ptr<Form> a_, L_;
   std::vector<std::shared_ptr<Form>> amount_, amount_cell_; ///< per species
-  std::unique_ptr<PeriodicConstraint> constraint_;
-  std::unique_ptr<dolfinx::la::petsc::Matrix> A_;
-  std::unique_ptr<dolfinx::la::Vector<T>> b_, x_;
-  std::unique_ptr<LinearSolver> solver_;
+  std::unique_ptr<PeriodicSystem> system_; ///< built by connect on each mesh
   int factorisations_ = 0;
   double last_wall_ = 0; ///< wall time of the last step (observables column wall_rd)
   int last_iterations_ = 0; ///< GMRES iterations of the last step (numerics.solver: reuse)
