@@ -1,6 +1,8 @@
 #include "scene/Shapes.h"
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <muParser.h>
 #include <stdexcept>
 
@@ -100,27 +102,142 @@ double ellipsoid_distance(const double* q, const double* e, int n)
   return g < 1 ? -dist : dist;
 }
 
-/// f / |grad f| with f = |q-f1|^2 |q-f2|^2 - b^4, foci at (+-a, 0, 0).
-double cassini_distance(const double* q, double a, double b)
+/// f = |q - f1|^2 |q - f2|^2 - b^4 with the foci at (+-a, 0, 0): negative inside.
+double cassini_f(const double* q, double a, double b)
 {
-  const double r1[3] = {q[0] - a, q[1], q[2]};
-  const double r2[3] = {q[0] + a, q[1], q[2]};
-  const double d1 = r1[0] * r1[0] + r1[1] * r1[1] + r1[2] * r1[2];
-  const double d2 = r2[0] * r2[0] + r2[1] * r2[1] + r2[2] * r2[2];
-  const double f = d1 * d2 - b * b * b * b;
-  double grad2 = 0;
-  for (int i = 0; i < 3; ++i)
+  const double d1 = (q[0] - a) * (q[0] - a) + q[1] * q[1] + q[2] * q[2];
+  const double d2 = (q[0] + a) * (q[0] + a) + q[1] * q[1] + q[2] * q[2];
+  return d1 * d2 - b * b * b * b;
+}
+
+/// Distance from (u, v) to the segment pq; `nearest` (if given) receives its nearest point.
+double segment_distance(double u, double v, const std::array<double, 2>& p,
+                        const std::array<double, 2>& q, std::array<double, 2>* nearest = nullptr)
+{
+  const double ex = q[0] - p[0], ey = q[1] - p[1];
+  const double len2 = ex * ex + ey * ey;
+  const double t = len2 > 0 ? std::clamp(((u - p[0]) * ex + (v - p[1]) * ey) / len2, 0.0, 1.0) : 0.0;
+  const double dx = u - p[0] - t * ex, dy = v - p[1] - t * ey;
+  if (nearest)
+    *nearest = {p[0] + t * ex, p[1] + t * ey};
+  return std::sqrt(dx * dx + dy * dy);
+}
+} // namespace
+
+CassiniQuarter::CassiniQuarter(double a, double b) : a_(a), b_(b)
+{
+  // r^2(theta) = a^2 cos 2theta +- sqrt(b^4 - a^4 sin^2 2theta): for b >= a one branch (+)
+  // from the x axis (theta = 0) to the y axis; for b < a the loop about the focus, + out to
+  // the largest theta (sin 2theta = b^2/a^2) and - back.
+  const int n = coarse * fine;
+  const double a2 = a * a, b4 = b * b * b * b;
+  auto point = [&](double theta, double sign)
   {
-    const double gi = 2 * (r1[i] * d2 + r2[i] * d1);
-    grad2 += gi * gi;
+    const double root = std::sqrt(std::max(0.0, b4 - a2 * a2 * std::sin(2 * theta) * std::sin(2 * theta)));
+    const double r = std::sqrt(std::max(0.0, a2 * std::cos(2 * theta) + sign * root));
+    return std::array<double, 2>{r * std::cos(theta), r * std::sin(theta)};
+  };
+  if (b >= a)
+    for (int i = 0; i <= n; ++i)
+      points_.push_back(point(0.5 * std::numbers::pi * i / n, 1));
+  else
+  {
+    // theta = top (1 - (1 - s)^2): the branches meet at theta = top with a vertical
+    // tangent in r(theta), where uniform theta would leave gaps of sqrt(dtheta).
+    const double top = 0.5 * std::asin(b * b / a2);
+    auto theta = [&](int i) { const double s = 1.0 - double(i) / (n / 2); return top * (1 - s * s); };
+    for (int i = 0; i <= n / 2; ++i)
+      points_.push_back(point(theta(i), 1));
+    for (int i = n / 2 - 1; i >= 0; --i)
+      points_.push_back(point(theta(i), -1));
   }
-  const double r = f / std::sqrt(grad2);
-  // grad f vanishes at the foci and the midpoint, far from the zero set: any finite value
-  // of the right sign does there.
-  const double cap = a + b;
-  if (!std::isfinite(r) || std::abs(r) > 1e3 * cap)
-    return std::copysign(cap, f);
-  return r;
+  // Each coarse chord and how far the fine points of its span are from it.
+  sagitta_.resize(coarse);
+  for (int j = 0; j < coarse; ++j)
+    for (int i = j * fine; i <= (j + 1) * fine; ++i)
+      sagitta_[j] = std::max(sagitta_[j], segment_distance(points_[i][0], points_[i][1],
+                                                           points_[j * fine],
+                                                           points_[(j + 1) * fine]));
+}
+
+double CassiniQuarter::distance(double u, double v) const
+{
+  // A coarse chord's distance is within its sagitta of its arc's: only the arcs that may
+  // hold the nearest point are searched on the fine polyline.
+  std::array<double, coarse> chord;
+  double upper = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < coarse; ++j)
+  {
+    chord[j] = segment_distance(u, v, points_[j * fine], points_[(j + 1) * fine]);
+    upper = std::min(upper, chord[j] + sagitta_[j]);
+  }
+  double best = std::numeric_limits<double>::infinity();
+  std::array<double, 2> foot{};
+  for (int j = 0; j < coarse; ++j)
+    if (chord[j] - sagitta_[j] <= upper)
+      for (int i = j * fine; i < (j + 1) * fine; ++i)
+      {
+        std::array<double, 2> near;
+        const double d = segment_distance(u, v, points_[i], points_[i + 1], &near);
+        if (d < best)
+          best = d, foot = near;
+      }
+  // The slide along the tangent converges where the distance is well below the radius of
+  // curvature; farther out the polyline's error (~2e-7 of the size) is small beside it.
+  return best < 0.01 * (a_ + b_) ? refine(u, v, foot, best) : best;
+}
+
+double CassiniQuarter::refine(double u, double v, std::array<double, 2> p, double d) const
+{
+  // The polyline's foot point onto the curve g = 0 (g = f in the (x, rho) plane): Newton
+  // steps onto the curve, each followed by a slide along the tangent towards (u, v), where
+  // the foot point makes q - p normal to the curve.
+  auto project = [&](std::array<double, 2>& x) -> std::array<double, 2>
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double d1 = (x[0] - a_) * (x[0] - a_) + x[1] * x[1];
+      const double d2 = (x[0] + a_) * (x[0] + a_) + x[1] * x[1];
+      const double g = d1 * d2 - b_ * b_ * b_ * b_;
+      const std::array<double, 2> grad{2 * (x[0] - a_) * d2 + 2 * (x[0] + a_) * d1,
+                                       2 * x[1] * (d1 + d2)};
+      const double n2 = grad[0] * grad[0] + grad[1] * grad[1];
+      if (!(n2 > 1e-30))
+        return {0, 0};
+      x[0] -= g * grad[0] / n2;
+      x[1] -= g * grad[1] / n2;
+      if (k == 2)
+        return {grad[0] / std::sqrt(n2), grad[1] / std::sqrt(n2)};
+    }
+    return {0, 0};
+  };
+  for (int it = 0; it < 4; ++it)
+  {
+    const auto n = project(p);
+    if (n[0] == 0 && n[1] == 0)
+      return d;
+    const std::array<double, 2> t{-n[1], n[0]};
+    const double slide = (u - p[0]) * t[0] + (v - p[1]) * t[1];
+    p[0] += slide * t[0];
+    p[1] += slide * t[1];
+  }
+  if (const auto n = project(p); n[0] == 0 && n[1] == 0)
+    return d;
+  const double refined = std::hypot(u - p[0], v - p[1]);
+  // The polyline is within ~2e-7 of the oval's size of the curve: a foot point that moved
+  // the distance by more than 1e-6 of it has left for another part of the curve.
+  return std::abs(refined - d) <= 1e-6 * (a_ + b_) ? refined : d;
+}
+
+namespace
+{
+/// Signed distance to the Cassini oval (a surface of revolution about the x axis in 3D):
+/// the distance to the quarter curve of the first quadrant, which holds the nearest point
+/// of the point mirrored there (the oval is symmetric about both axes); the sign of f.
+double cassini_distance(const double* q, double a, double b, const CassiniQuarter& quarter)
+{
+  const double d = quarter.distance(std::abs(q[0]), std::sqrt(q[1] * q[1] + q[2] * q[2]));
+  return cassini_f(q, a, b) < 0 ? -d : d;
 }
 
 } // namespace
@@ -134,6 +251,8 @@ struct SignedDistance::Expression
 SignedDistance::SignedDistance(const Cell& cell, int dim)
     : cell_(cell), dim_(dim), cos_(std::cos(cell.rotation)), sin_(std::sin(cell.rotation))
 {
+  if (cell.shape == ShapeKind::cassini)
+    cassini_ = std::make_shared<const CassiniQuarter>(cell.cassini_a, cell.cassini_b);
   if (cell.shape != ShapeKind::expression && cell.shape != ShapeKind::field)
     return;
   expr_ = std::make_shared<Expression>();
@@ -165,7 +284,7 @@ double SignedDistance::operator()(double x, double y, double z) const
   case ShapeKind::ellipse:
     return ellipsoid_distance(q, cell_.semi_axes.data(), dim_);
   case ShapeKind::cassini:
-    return cassini_distance(q, cell_.cassini_a, cell_.cassini_b);
+    return cassini_distance(q, cell_.cassini_a, cell_.cassini_b, *cassini_);
   case ShapeKind::expression:
     expr_->x = q[0];
     expr_->y = q[1];

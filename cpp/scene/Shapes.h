@@ -1,6 +1,7 @@
 // Initial cell shapes as signed distance functions, and the initial phase field (2.12).
 #pragma once
 #include "scene/Scene.h"
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,25 @@ namespace cellphase::scene
 /// Expressions are evaluated in the cell's frame (centre subtracted, rotation undone).
 /// Copies of an expression cell share one muparser instance: do not evaluate them from
 /// several threads at once (MPI ranks are separate processes and are fine).
+/// The quarter of a Cassini oval |x - f1| |x - f2| = b^2 (foci (+-a, 0)) in the first
+/// quadrant as a polyline of coarse x fine chords, and the distance of a point of the
+/// first quadrant to it (chord error below 1e-6 of the oval's size).
+class CassiniQuarter
+{
+public:
+  CassiniQuarter(double a, double b);
+  double distance(double u, double v) const;
+
+private:
+  /// The distance d to the polyline refined to the curve from the polyline's foot point p.
+  double refine(double u, double v, std::array<double, 2> p, double d) const;
+
+  static constexpr int coarse = 64, fine = 32;
+  double a_, b_;
+  std::vector<std::array<double, 2>> points_;
+  std::vector<double> sagitta_;
+};
+
 class SignedDistance
 {
 public:
@@ -31,6 +51,7 @@ private:
   int dim_;
   double cos_, sin_;
   std::shared_ptr<Expression> expr_; // shared: copies reuse the compiled parser
+  std::shared_ptr<const CassiniQuarter> cassini_; ///< shape cassini
 };
 
 /// Empty if `expression` is a valid muparser expression in x, y, z giving one value;

@@ -3,8 +3,11 @@ variants that reach code paths the demos do not) cut to a handful of steps on a 
 with a remesh and a checkpoint inside the run. Their observables were recorded with the code
 before the modular core (field registry and sub-problems) replaced the hand-wired time loop;
 the core must reproduce them bitwise, since it does the same arithmetic in the same order.
+rbc-channel and rbc-parachute were recorded again when the Cassini oval's initial profile
+became the tanh of its exact signed distance instead of the estimate f / |grad f|.
 
-Run as a script to (re)record the baselines: /usr/bin/python3 tests/regression/cases.py EXE
+Run as a script to (re)record the baselines, all or the named ones:
+    /usr/bin/python3 tests/regression/cases.py EXE [NAME ...]
 """
 import copy
 import csv
@@ -84,9 +87,11 @@ def run_case(exe, scene, workdir, env=None):
 
 if __name__ == "__main__":
     import tempfile
-    exe = sys.argv[1]
+    exe, names = sys.argv[1], sys.argv[2:]
     with tempfile.TemporaryDirectory() as tmp:
         for name, scene in cases().items():
+            if names and name not in names:
+                continue
             out = run_case(exe, scene, pathlib.Path(tmp) / name)
             rows = physics_columns(out)
             with open(HERE / f"{name}.csv", "w", newline="") as f:
