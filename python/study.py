@@ -123,8 +123,12 @@ def run_member(exe, study, member, ranks=1, jobs=1):
         shutil.rmtree(run_dir, ignore_errors=True)  # a partial, failed or outdated attempt
         run_dir.mkdir(parents=True)
     (run_dir / "command.txt").write_text(" ".join(mpi_prefix(ranks, jobs) + args) + "\n")
-    code, wall, peak = run_command(mpi_prefix(ranks, jobs) + args, run_dir,
-                                   env={"OPENBLAS_NUM_THREADS": "1"} if ranks > 1 else None)
+    try:
+        code, wall, peak = run_command(mpi_prefix(ranks, jobs) + args, run_dir,
+                                       env={"OPENBLAS_NUM_THREADS": "1"} if ranks > 1 else None)
+    except OSError as e:  # the executable vanished or is being rebuilt: this member fails
+        (run_dir / "stderr.txt").write_text(f"cannot start {args[0]}: {e}\n")
+        code, wall, peak = -1, 0.0, 0.0
     attempts = (earlier or []) + [wall]
     record = {"exit": code, "wall": sum(attempts), "peak_mb": peak, "ranks": ranks,
               "settings": settings, "attempts": attempts}

@@ -202,6 +202,21 @@ def test_failures_are_data(tmp_path):
     assert "FAILED (exit 2)" in (tmp_path / "hard.md").read_text()
 
 
+def test_an_executable_that_cannot_start_fails_the_member_not_the_study(tmp_path):
+    # As when the build replaces it while a study runs: a failed member, run again next time.
+    broken = tmp_path / "cellphase"
+    broken.write_text("not a program\n")
+    broken.chmod(0o644)
+    env = {**os.environ, "CELLPHASE_EXE": str(broken)}
+    path = write_study(tmp_path, "scene: SCENE\noutput: out\nset: {numerics.end_time: 0.004}\n"
+                                 "sweep: {numerics.epsilon: [0.1]}\n")
+    proc = subprocess.run([sys.executable, str(STUDY), "run", str(path)], capture_output=True,
+                          text=True, env=env, timeout=60)
+    assert "Traceback" not in proc.stderr, proc.stderr
+    assert proc.returncode == 1 and "FAILED (exit -1) cannot start" in proc.stdout, proc.stdout
+    assert "Permission denied" in (tmp_path / "out" / "epsilon=0.1" / "stderr.txt").read_text()
+
+
 def test_stopped_member_continues_from_its_checkpoint(tmp_path):
     """SIGUSR1 to study.py stops the running member after a checkpoint (marker `stopped`,
     exit status 1, no later member started); the next `run` continues it with --restart,
