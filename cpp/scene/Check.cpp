@@ -423,6 +423,11 @@ std::string check_report(const Scene& s)
   const long steps = number_of_steps(s);
   r.line("time step", fmt(s.numerics.dt) + ", end time " + fmt(s.numerics.end_time));
   r.line("steps", std::to_string(steps));
+  if (const auto& w = s.numerics.stop_when_settled)
+    r.line("stop when settled", w->observable + " varies by at most max(" + fmt(w->relative)
+                                    + " |value|, " + fmt(w->absolute) + ") over "
+                                    + fmt(w->over) + " time units (from t = "
+                                    + fmt(w->after + w->over) + ")");
   const std::string guide = stabilised_accuracy_warning(s);
   if (!guide.empty())
     r.out_ << "  warning: " << guide << "\n";

@@ -93,3 +93,11 @@ def test_bad_settling_input_stops_before_the_first_step(tmp_path, watch, message
     assert "error:" in proc.stderr and message in proc.stderr, proc.stderr
     csv_path = run_dir / "observables.csv"
     assert not csv_path.exists() or len(rows(run_dir)) <= 1  # nothing stepped
+
+
+def test_check_states_the_settling_rule(tmp_path):
+    path = write_scene(settling_scene(), tmp_path, tmp_path / "out")
+    proc = cellphase(["check", path])
+    assert proc.returncode == 0, proc.stderr
+    assert ("stop when settled     helfrich_energy varies by at most max(0.0003 |value|, 0) "
+            "over 0.02 time units (from t = 0.02)") in proc.stdout, proc.stdout
