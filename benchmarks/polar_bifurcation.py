@@ -1,0 +1,147 @@
+#!/usr/bin/python3
+"""Bifurcation diagram of the active polar gel cell (thesis Fig. 6.8) with the study tool:
+the stationary speed |v_cell| against the activity 1/Fa, one sweep per beta (benchmarks/
+studies/polar-bifurcation.yaml for beta = 0, polar-bifurcation-beta0.05.yaml). Every member
+stops once v_cell has settled (numerics.stop_when_settled), at the latest at its end_time.
+
+Usage: /usr/bin/python3 benchmarks/polar_bifurcation.py [STUDY.yaml ...] [--jobs N]
+                                                        [--report-only]
+
+Runs the members not yet done (python/study.py run, one study after the other), then writes
+benchmarks/results/polar-bifurcation.csv with the columns
+  beta,inv_fa,epsilon,v_cell,settled,t_end,steps,wall_time_s
+(v_cell: |mean cell_velocity_x| over the last settling window; settled: 1 if the member
+stopped because v_cell settled, 0 if it reached end_time still changing), a table in
+polar-bifurcation.md and the diagram polar-bifurcation.png (|v_cell| against 1/Fa, open
+markers for members that had not settled).
+"""
+import argparse
+import csv
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "python"))
+import study as study_runner  # noqa: E402  (python/study.py)
+from study_file import load_study  # noqa: E402
+
+COLUMNS = ["beta", "inv_fa", "epsilon", "v_cell", "settled", "t_end", "steps", "wall_time_s"]
+
+
+def settle_settings(study):
+    """over and end_time of the members (the study's `set`)."""
+    common = study.common
+    return (float(common["numerics.stop_when_settled.over"]),
+            float(common["numerics.end_time"]))
+
+
+def member_rows(study):
+    """One row per finished member, and a line for each unfinished one."""
+    over, end_time = settle_settings(study)
+    rows, missing = [], []
+    for r in study_runner.collect(study):
+        beta = float(r["params"]["polar_gel.beta"])
+        inv_fa = float(r["params"]["polar_gel.activity"])
+        if r["status"] != "ok":
+            missing.append(f"beta = {beta:g}, 1/Fa = {inv_fa:g}: {r['status']}")
+            continue
+        t, v = r["obs"]["time"], r["obs"]["cell_velocity_x"]
+        window = [abs(x) for s, x in zip(t, v) if s >= t[-1] - over - 1e-9]
+        rows.append({"beta": beta, "inv_fa": inv_fa,
+                     "epsilon": float(study.common["numerics.epsilon"]),
+                     "v_cell": sum(window) / len(window),
+                     "settled": int(float(t[-1]) < end_time - 1e-9),
+                     "t_end": float(t[-1]), "steps": int(r["obs"]["step"][-1]),
+                     "wall_time_s": r["wall"]})
+    return sorted(rows, key=lambda row: (row["beta"], row["inv_fa"])), missing
+
+
+def plot(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.5, 4), constrained_layout=True)
+    for beta in sorted({r["beta"] for r in rows}):
+        mine = [r for r in rows if r["beta"] == beta]
+        line, = ax.plot([r["inv_fa"] for r in mine], [r["v_cell"] for r in mine], "-",
+                        label=f"beta = {beta:g}")
+        for r in mine:
+            ax.plot(r["inv_fa"], r["v_cell"], "o", color=line.get_color(),
+                    markerfacecolor=line.get_color() if r["settled"] else "white")
+    ax.set_xlabel("activity 1/Fa")
+    ax.set_ylabel("stationary |v_cell|")
+    eps = rows[0]["epsilon"]
+    ax.set_title(f"Polar gel cell, eps = {eps:g} (open: not settled by t_end)", fontsize=10)
+    ax.legend()
+    fig.savefig(path, dpi=120)
+
+
+def write_markdown(rows, missing, study, path):
+    """The table; the settling rule is that of `study` (the same in every sweep)."""
+    over, end_time = settle_settings(study)
+    lines = [
+        "# Bifurcation diagram of the active polar gel cell (thesis Fig. 6.8)",
+        "",
+        f"Written by `benchmarks/polar_bifurcation.py` from `benchmarks/studies/polar-bifurcation*.yaml`"
+        f" (eps = {rows[0]['epsilon']:g}; each member stops once v_cell varies by at most "
+        f"{study.common['numerics.stop_when_settled.relative']} of itself or "
+        f"{study.common['numerics.stop_when_settled.absolute']} over {over:g} time units, at "
+        f"the latest at t = {end_time:g}). v_cell is |mean cell_velocity_x| over the last "
+        f"{over:g} time units. A cell coming to rest counts as settled once its speed changes "
+        f"by less than the absolute tolerance over the window, so speeds of that order mean "
+        f"\"at rest\" (still decaying); a member that reaches t_end unsettled is listed with "
+        f"its speed then.",
+        "",
+        "| beta | 1/Fa | v_cell | settled | t_end | steps | wall s (1 core) |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(f"| {r['beta']:g} | {r['inv_fa']:g} | {r['v_cell']:.4g} | "
+                     f"{'yes' if r['settled'] else 'no'} | {r['t_end']:g} | {r['steps']} | "
+                     f"{r['wall_time_s']:.0f} |")
+    if missing:
+        lines += ["", "Not finished:", ""] + [f"- {m}" for m in missing]
+    lines += ["", "![diagram](polar-bifurcation.png)", ""]
+    path.write_text("\n".join(lines))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    studies = ROOT / "benchmarks" / "studies"
+    parser.add_argument("studies", nargs="*", default=[str(studies / "polar-bifurcation.yaml"),
+                                                       str(studies / "polar-bifurcation-beta0.05.yaml")])
+    parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--report-only", action="store_true")
+    args = parser.parse_args(argv)
+    rows, missing = [], []
+    for path in args.studies:
+        if not args.report_only:
+            subprocess.run([sys.executable, str(ROOT / "python" / "study.py"), "run", path,
+                            "--jobs", str(args.jobs)], check=False)
+        study = load_study(path)
+        more_rows, more_missing = member_rows(study)
+        rows += more_rows
+        missing += more_missing
+    if not rows:
+        sys.exit("no member finished (run without --report-only)")
+    out = ROOT / "benchmarks" / "results"
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / "polar-bifurcation.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=COLUMNS)
+        writer.writeheader()
+        for r in rows:
+            writer.writerow({k: (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k])
+                             for k in COLUMNS})
+    plot(rows, out / "polar-bifurcation.png")
+    write_markdown(rows, missing, study, out / "polar-bifurcation.md")
+    for r in rows:
+        print(f"beta {r['beta']:g}  1/Fa {r['inv_fa']:<5g} v_cell {r['v_cell']:.4g}  "
+              f"{'settled' if r['settled'] else 'NOT settled'} at t = {r['t_end']:g}")
+    for m in missing:
+        print("not finished:", m)
+    print(f"written: {out / 'polar-bifurcation.csv'}, .md, .png")
+
+
+if __name__ == "__main__":
+    main()
