@@ -28,6 +28,10 @@ void SettledWatch::add(const std::vector<ObservableColumn>& columns)
                               "observables.csv; its columns are: " + scene::yaml::join(names));
   }
   rows_.emplace_back(columns[0].value, columns[*column_].value); // column 0 is the time
+  // Only the window and the last row before it are needed.
+  const double start = rows_.back().first - stop_.over;
+  while (rows_.size() > 2 && rows_[1].first <= start)
+    rows_.pop_front();
 }
 
 std::optional<std::string> SettledWatch::settled() const

@@ -5,6 +5,7 @@
 #pragma once
 #include "io/ObservablesCsv.h"
 #include "scene/Scene.h"
+#include <deque>
 #include <optional>
 #include <string>
 #include <utility>
@@ -18,7 +19,10 @@ public:
   SettledWatch(scene::SettledStop stop, std::string scene_source);
 
   /// The rows so far of a restarted run (time, value), from its observables.csv.
-  void restore(std::vector<std::pair<double, double>> rows) { rows_ = std::move(rows); }
+  void restore(const std::vector<std::pair<double, double>>& rows)
+  {
+    rows_.assign(rows.begin(), rows.end());
+  }
   /// Adds a row; the first one names the columns, and an observable that is not among
   /// them is a scene error naming the key and the columns there are.
   void add(const std::vector<ObservableColumn>& columns);
@@ -28,7 +32,7 @@ public:
 private:
   scene::SettledStop stop_;
   std::string source_;
-  std::vector<std::pair<double, double>> rows_; ///< (time, value)
+  std::deque<std::pair<double, double>> rows_; ///< (time, value): the window and one before
   std::optional<std::size_t> column_;
 };
 } // namespace cellphase
