@@ -77,6 +77,36 @@ def plot(rows, path):
     fig.savefig(path, dpi=120)
 
 
+AT_REST = 0.01  # |v_cell| below this counts as at rest (moving members here: 0.1 and more)
+
+
+def critical_brackets(rows):
+    """For beta = 0 (a pitchfork: P -> -P is a symmetry), the activities between which the
+    cell starts to move: the largest 1/Fa at rest (|v_cell| < AT_REST) and the smallest above
+    it that moves. For beta > 0 (no such symmetry) the speeds in order."""
+    lines = []
+    for beta in sorted({r["beta"] for r in rows}):
+        mine = sorted((r for r in rows if r["beta"] == beta), key=lambda r: r["inv_fa"])
+        if beta != 0:
+            speeds = ", ".join(f"{r['v_cell']:.3g} ({r['inv_fa']:g})" for r in mine)
+            lines.append(f"- beta = {beta:g}: |v_cell| (1/Fa) = {speeds}.")
+            continue
+        rest = [r["inv_fa"] for r in mine if r["v_cell"] < AT_REST]
+        moving = [r["inv_fa"] for r in mine if r["v_cell"] >= AT_REST
+                  and (not rest or r["inv_fa"] > max(rest))]
+        if rest and moving:
+            lines.append(f"- beta = {beta:g}: at rest (|v_cell| < {AT_REST:g}) up to 1/Fa = "
+                         f"{max(rest):g}, moving from {min(moving):g}: the critical activity "
+                         f"lies between them.")
+        else:
+            lines.append(f"- beta = {beta:g}: no member at rest below a moving one (|v_cell| < "
+                         f"{AT_REST:g} at 1/Fa = {', '.join(f'{x:g}' for x in rest) or 'none'}):"
+                         f" no sharp onset in this range.")
+    lines.append("- The thesis finds 1/Fa_crit ~ 0.75 at eps = 0.21 for beta = 0, growing with "
+                 "eps (Fig. 6.10), and a transition smoothed out for beta > 0 (Fig. 6.8).")
+    return lines
+
+
 def write_markdown(rows, missing, study, path):
     """The table; the settling rule is that of `study` (the same in every sweep)."""
     over, end_time = settle_settings(study)
@@ -100,6 +130,7 @@ def write_markdown(rows, missing, study, path):
         lines.append(f"| {r['beta']:g} | {r['inv_fa']:g} | {r['v_cell']:.4g} | "
                      f"{'yes' if r['settled'] else 'no'} | {r['t_end']:g} | {r['steps']} | "
                      f"{r['wall_time_s']:.0f} |")
+    lines += [""] + critical_brackets(rows)
     if missing:
         lines += ["", "Not finished:", ""] + [f"- {m}" for m in missing]
     lines += ["", "![diagram](polar-bifurcation.png)", ""]
