@@ -11,8 +11,8 @@ import math
 from ufl import (Coefficient, FunctionSpace, TestFunctions, TrialFunctions, ds, dx, grad,
                  inner, split)
 
-from cellphase_ufl import (ADVECTION_DEGREE, QDEG, W, advection, constants, dW, ddW, domain,
-                           mixed, velocity, own_mesh_advection)
+from cellphase_ufl import (ADVECTION_DEGREE, QDEG, W, advection, bdf2_constants, constants, dW,
+                           ddW, domain, extrapolate, mixed, velocity, own_mesh_advection)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -27,9 +27,14 @@ gamma_phi = gamma * (1 - degenerate + degenerate * W(phi0))           # gamma(ph
 wall = -cos_theta / math.sqrt(2) * (1 - phi0**2) * nu * ds           # contact angle, 2.8
 
 # gamma(phi) makes the mobility term a polynomial of degree 12: QDEG as for W'.
-common = (phi * psi / dt + mu * nu - eps * inner(grad(phi), grad(nu))) * dx \
-    + gamma_phi * inner(grad(mu), grad(psi)) * dxq \
-    + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)        # v . grad phi, 2.8
+# `now` is the trial part of the time derivative (phi, or c0 phi for BDF2).
+def linear_part(now):
+    return (now * psi / dt + mu * nu - eps * inner(grad(phi), grad(nu))) * dx \
+        + gamma_phi * inner(grad(mu), grad(psi)) * dxq \
+        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)        # v . grad phi, 2.8
+
+
+common = linear_part(phi)
 # Taylor linearisation of W'(phi) about phi^n (section 5.3)
 a = common - ddW(phi0) / eps * phi * nu * dxq
 patch = own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
@@ -38,6 +43,17 @@ L = phi0 * psi / dt * dx + patch + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dx
 a_stab = common - S / eps * phi * nu * dx
 L_stab = phi0 * psi / dt * dx + patch + (dW(phi0) - S * phi0) / eps * nu * dxq + wall
 
+# BDF2 (numerics.time_scheme: bdf2; cellphase_ufl.bdf2_constants): W'(phi) linearised about
+# the extrapolation phi*; the degenerate mobility and the contact angle stay at phi^n (first
+# order: BDF2 is second order for the constant mobility and the natural condition only).
+u1 = Coefficient(Wsp)  # (phi^{n-1}, mu^{n-1})
+phi1, mu1 = split(u1)
+bdf_c0, bdf_c1, bdf_c2, bdf_w = bdf2_constants()
+phi_x = extrapolate(phi0, phi1, bdf_w)
+a_bdf2 = linear_part(bdf_c0 * phi) - ddW(phi_x) / eps * phi * nu * dxq
+L_bdf2 = (bdf_c1 * phi0 - bdf_c2 * phi1) * psi / dt * dx + patch \
+    + (dW(phi_x) - ddW(phi_x) * phi_x) / eps * nu * dxq + wall
+
 energy = (eps / 2 * inner(grad(phi0), grad(phi0)) + W(phi0) / eps) * dxq
 
-forms = [a, L, a_stab, L_stab, energy]
+forms = [a, L, a_stab, L_stab, energy, a_bdf2, L_bdf2]

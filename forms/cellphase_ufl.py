@@ -58,6 +58,40 @@ def constants(*names):
     return [Constant(domain) for _ in names]
 
 
+def bdf2_constants():
+    """Constants of the variable-step BDF2 scheme (numerics.time_scheme: bdf2), section
+    "Time schemes" of docs/scenes.md. With w = dt_n / dt_{n-1}:
+      d_t phi(t^{n+1}) ~ (c0 phi^{n+1} - c1 phi^n + c2 phi^{n-1}) / dt_n,
+      c0 = (1 + 2w) / (1 + w),  c1 = 1 + w,  c2 = w^2 / (1 + w),
+    and the nonlinear terms are linearised about the extrapolation
+      phi* = (1 + w) phi^n - w phi^{n-1} = phi^{n+1} + O(dt^2)
+    instead of phi^n, so the Taylor linearisation of section 5.3 stays second order.
+    Bind them to the globals bdf_c0, bdf_c1, bdf_c2, bdf_w (C++ sets them by name)."""
+    return constants("bdf_c0", "bdf_c1", "bdf_c2", "bdf_w")
+
+
+def extrapolate(now, before, w):
+    """phi* = (1 + w) phi^n - w phi^{n-1}, the BDF2 linearisation point."""
+    return (1 + w) * now - w * before
+
+
+def helfrich_time_schemes(linear_part, rhs_part, taylor, phi, now, before, bdf, H0):
+    """The Helfrich flows' (helfrich_l2.py, helfrich_hm1.py) two time discretisations from
+    their parts: linear_part(trial of d_t phi), rhs_part(known part of d_t phi, explicit
+    curvature), taylor(phi_l, mu_l) -> (lhs, rhs) of the linearisation about (phi_l, mu_l).
+    now = (phi^n, mu^n), before = (phi^{n-1}, mu^{n-1}), bdf = (c0, c1, c2, w).
+    Returns backward Euler about phi^n, the thesis' scheme, as (a, L); BDF2 about the
+    extrapolation (phi*, mu*) as (a_bdf2, L_bdf2); and kappa(phi*, mu*) for the loads."""
+    (phi0, mu0), (phi1, mu1), (c0, c1, c2, w) = now, before, bdf
+    lhs, rhs = taylor(phi0, mu0)
+    euler = (linear_part(phi) + lhs, rhs_part(phi0, kappa_of(phi0, mu0, H0)) + rhs)
+    phi_x, mu_x = extrapolate(phi0, phi1, w), extrapolate(mu0, mu1, w)
+    kappa_x = kappa_of(phi_x, mu_x, H0)
+    lhs_x, rhs_x = taylor(phi_x, mu_x)
+    bdf2 = (linear_part(c0 * phi) + lhs_x, rhs_part(c1 * phi0 - c2 * phi1, kappa_x) + rhs_x)
+    return euler, bdf2, kappa_x
+
+
 # Double-well potential W(phi) = (phi^2-1)^2/4 and its derivatives, section 2.5.1.
 def W(phi):
     return (phi**2 - 1) ** 2 / 4

@@ -10,8 +10,9 @@
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
-from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, constants, dddW0, ddW0,
-                           domain, dW0, kappa_of, mixed, velocity, own_mesh_advection)
+from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, bdf2_constants, constants,
+                           dddW0, ddW0, domain, dW0, helfrich_time_schemes, kappa_of, mixed,
+                           velocity, own_mesh_advection)
 
 Wsp = FunctionSpace(domain, mixed(3))
 (phi, mu, w), (psi, nu, zeta) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -24,18 +25,41 @@ kappa0 = kappa_of(phi0, mu0, H0)
 v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
 own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
 
-common = (phi * psi / dt + gamma * inner(grad(w), grad(psi))
-          + w * zeta + 1 / Be * inner(grad(mu), grad(zeta))
-          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
-    + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
-rhs_common = phi0 * psi / dt * dx + (lam_a / Be + sigma) * kappa0 * zeta * dxq \
-    + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
+# Linear part shared by all time discretisations; `now` is the trial part of the time
+# derivative (phi, or c0 phi for BDF2).
+def linear_part(now):
+    return (now * psi / dt + gamma * inner(grad(w), grad(psi))
+            + w * zeta + 1 / Be * inner(grad(mu), grad(zeta))
+            + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
+        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
 
-# Taylor linearisation as in helfrich_l2.py (section 5.3)
-a = common + (1 / (Be * eps**2) * (ddW0(phi0, eps, H0) * mu + dddW0(phi0, eps, H0) * mu0 * phi)
-              * zeta + ddW0(phi0, eps, H0) / eps * phi * nu) * dxq
-L = rhs_common + (1 / (Be * eps**2) * dddW0(phi0, eps, H0) * mu0 * phi0 * zeta
-                  - (dW0(phi0, eps, H0) - ddW0(phi0, eps, H0) * phi0) / eps * nu) * dxq
+
+# `before`: the known part of the time derivative; kappa: the explicit curvature.
+def rhs_part(before, kappa):
+    return before * psi / dt * dx + (lam_a / Be + sigma) * kappa * zeta * dxq \
+        + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
+
+
+# Taylor linearisation as in helfrich_l2.py (section 5.3), about (phi_l, mu_l)
+def taylor(phi_l, mu_l):
+    lhs = (1 / (Be * eps**2) * (ddW0(phi_l, eps, H0) * mu + dddW0(phi_l, eps, H0) * mu_l * phi)
+           * zeta + ddW0(phi_l, eps, H0) / eps * phi * nu) * dxq
+    rhs = (1 / (Be * eps**2) * dddW0(phi_l, eps, H0) * mu_l * phi_l * zeta
+           - (dW0(phi_l, eps, H0) - ddW0(phi_l, eps, H0) * phi_l) / eps * nu) * dxq
+    return lhs, rhs
+
+
+# Backward Euler linearised about phi^n (the thesis' scheme) and BDF2
+# (numerics.time_scheme: bdf2; cellphase_ufl.bdf2_constants) linearised about the
+# extrapolation (phi*, mu*), whose curvature kappa* also drives the multipliers' loads.
+u1 = Coefficient(Wsp)  # (phi^{n-1}, mu^{n-1}, w^{n-1})
+phi1, mu1, w1 = split(u1)
+bdf_c0, bdf_c1, bdf_c2, bdf_w = bdf2_constants()
+(a, L), (a_bdf2, L_bdf2), kappa_x = helfrich_time_schemes(
+    linear_part, rhs_part, taylor, phi, (phi0, mu0), (phi1, mu1),
+    (bdf_c0, bdf_c1, bdf_c2, bdf_w), H0)
+common = linear_part(phi)  # the stabilised variant's linear part
+rhs_common = rhs_part(phi0, kappa0)
 
 # Stabilised constant-matrix variant as in helfrich_l2.py
 a_stab = common + (1 / (Be * eps**2) * S * mu * zeta + S / eps * phi * nu) * dx
@@ -45,6 +69,7 @@ L_stab = rhs_common + (- 1 / (Be * eps**2) * (ddW0(phi0, eps, H0) - S) * mu0 * z
 # Unit load of the area penalty: the solution is linear in lam_a, so the penalty can be
 # evaluated at t^{n+1} (with E_CH linearised) instead of explicitly; see PhaseFieldModule.
 load_a = 1 / Be * kappa0 * zeta * dxq
+load_a_bdf2 = 1 / Be * kappa_x * zeta * dxq
 
 # Initial mu from phi^0 (L2 projection of (3.23))
 V = FunctionSpace(domain, P2)
@@ -70,7 +95,7 @@ phi_h = Coefficient(V)
 L_int = In_inv * (dB_of(phi_h, eps) * w_sum
                   + interaction_dw(phi_h, eps, r1, r2, a1, a2, a3) * B_sum) * q * dxq
 
-forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int, L_int]
+forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int, L_int, a_bdf2, L_bdf2, load_a_bdf2]
 
 # The orientation field of an active polar gel in phi# (6.15): dE_P/dphi of (6.4),
 # (1/Pa) (-(c1/2) |P|^2 - beta div P) with P = P^{n+1} (section 6.3, step 3; (6.15) prints

@@ -8,8 +8,9 @@
 from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialFunction,
                  TrialFunctions, dx, grad, inner, split)
 
-from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, constants, dddW0, ddW0,
-                           domain, dW0, kappa_of, mixed, velocity, own_mesh_advection)
+from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, bdf2_constants, constants,
+                           dddW0, ddW0, domain, dW0, helfrich_time_schemes, kappa_of, mixed,
+                           velocity, own_mesh_advection)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi_test, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -28,21 +29,43 @@ kappa0 = kappa_of(phi0, mu0, H0)
 v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
 own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
 
-# Linear part shared by both time discretisations (Lap mu integrated by parts)
-common = (phi * psi / dt - g * inner(grad(mu), grad(psi))
-          + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
-    + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
-rhs_common = phi0 * psi / dt * dx \
-    - (g * (lam_v + lam_a * kappa0) + gamma * sigma * kappa0) * psi * dxq \
-    + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
+# Linear part shared by all time discretisations (Lap mu integrated by parts); `now` is the
+# trial part of the time derivative (phi, or c0 phi for BDF2).
+def linear_part(now):
+    return (now * psi / dt - g * inner(grad(mu), grad(psi))
+            + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
+        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
 
-# Taylor linearisation (section 5.3):
-#   W0''(phi) mu ~ W0''(phi^n) mu + W0'''(phi^n) mu^n (phi - phi^n)
-#   W0'(phi)     ~ W0'(phi^n) + W0''(phi^n)(phi - phi^n)
-a = common + (- g / eps**2 * (ddW0(phi0, eps, H0) * mu + dddW0(phi0, eps, H0) * mu0 * phi) * psi
-              + ddW0(phi0, eps, H0) / eps * phi * nu) * dxq
-L = rhs_common + (- g / eps**2 * dddW0(phi0, eps, H0) * mu0 * phi0 * psi
-                  - (dW0(phi0, eps, H0) - ddW0(phi0, eps, H0) * phi0) / eps * nu) * dxq
+
+# `before`: the known part of the time derivative; kappa: the explicit curvature.
+def rhs_part(before, kappa):
+    return before * psi / dt * dx \
+        - (g * (lam_v + lam_a * kappa) + gamma * sigma * kappa) * psi * dxq \
+        + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
+
+
+# Taylor linearisation (section 5.3) about (phi_l, mu_l):
+#   W0''(phi) mu ~ W0''(phi_l) mu + W0'''(phi_l) mu_l (phi - phi_l)
+#   W0'(phi)     ~ W0'(phi_l) + W0''(phi_l)(phi - phi_l)
+def taylor(phi_l, mu_l):
+    lhs = (- g / eps**2 * (ddW0(phi_l, eps, H0) * mu + dddW0(phi_l, eps, H0) * mu_l * phi) * psi
+           + ddW0(phi_l, eps, H0) / eps * phi * nu) * dxq
+    rhs = (- g / eps**2 * dddW0(phi_l, eps, H0) * mu_l * phi_l * psi
+           - (dW0(phi_l, eps, H0) - ddW0(phi_l, eps, H0) * phi_l) / eps * nu) * dxq
+    return lhs, rhs
+
+
+# Backward Euler linearised about phi^n (the thesis' scheme) and BDF2
+# (numerics.time_scheme: bdf2; cellphase_ufl.bdf2_constants) linearised about the
+# extrapolation (phi*, mu*), whose curvature kappa* also drives the multipliers' loads.
+u1 = Coefficient(Wsp)  # (phi^{n-1}, mu^{n-1})
+phi1, mu1 = split(u1)
+bdf_c0, bdf_c1, bdf_c2, bdf_w = bdf2_constants()
+(a, L), (a_bdf2, L_bdf2), kappa_x = helfrich_time_schemes(
+    linear_part, rhs_part, taylor, phi, (phi0, mu0), (phi1, mu1),
+    (bdf_c0, bdf_c1, bdf_c2, bdf_w), H0)
+common = linear_part(phi)  # the stabilised variant's linear part
+rhs_common = rhs_part(phi0, kappa0)
 
 # Stabilised: W0''(phi) mu ~ S mu + (W0''(phi^n) - S) mu^n,  W0'(phi) ~ W0'(phi^n) + S(phi - phi^n).
 # S = 2 = W0''(-1) makes both exact in the bulk phase; the matrix is constant.
@@ -56,6 +79,7 @@ L_stab = rhs_common + (g / eps**2 * (ddW0(phi0, eps, H0) - S) * mu0 * psi
 # section 3.4.1), or penalties p1 (V - V0), p2 (A - A0) evaluated at t^{n+1} (3.32).
 load_v = -g * psi * dx
 load_a = -g * kappa0 * psi * dxq
+load_a_bdf2 = -g * kappa_x * psi * dxq
 
 # Initial mu from phi^0: L2 projection of eps Lap phi - W0'(phi)/eps (3.23)
 V = FunctionSpace(domain, P2)
@@ -73,4 +97,4 @@ L_dE = ((-inner(grad(mu_h), grad(q)) - ddW0(phi_h, eps, H0) * mu_h * q / eps**2
          + (lam_v + lam_a * kappa_of(phi_h, mu_h, H0)) * q) / Be
         + sigma * kappa_of(phi_h, mu_h, H0) * q) * dxq                   # (1/Ca) kappa, (3.84)
 
-forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu, L_dE]
+forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu, L_dE, a_bdf2, L_bdf2, load_a_bdf2]

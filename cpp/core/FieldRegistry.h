@@ -45,6 +45,9 @@ struct FieldInfo
   double outside = 0;
   /// Its mesh is refined around its zero level set (as around every keep_integral field).
   bool level_set = false;
+  /// A two-step scheme's copy of a field at the step before: it moves to a new mesh as
+  /// that field does but never shapes the mesh.
+  bool history = false;
 };
 
 class FieldRegistry
@@ -90,7 +93,7 @@ public:
   bool shapes_mesh(const std::string& name) const
   {
     const FieldInfo& i = info(name);
-    return i.level_set || i.transfer == Transfer::keep_integral;
+    return !i.history && (i.level_set || i.transfer == Transfer::keep_integral);
   }
 
   /// Named scalars that sub-problems publish for others (e.g. a cell's area target for the

@@ -65,6 +65,9 @@ ModelForms model_forms(scene::Model model, int dim)
   f.L = required(file, dim, "L");
   f.a_stab = required(file, dim, "a_stab");
   f.L_stab = required(file, dim, "L_stab");
+  f.a_bdf2 = required(file, dim, "a_bdf2");
+  f.L_bdf2 = required(file, dim, "L_bdf2");
+  f.load_a_bdf2 = optional(file, dim, "load_a_bdf2");
   f.space = space(file, dim, "a");
   // Every model but Allen-Cahn carries the advection term with coefficient "v".
   f.advected = file != "allen_cahn";

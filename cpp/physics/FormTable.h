@@ -14,6 +14,11 @@ struct ModelForms
   ufcx_form* L = nullptr;
   ufcx_form* a_stab = nullptr;   ///< stabilised matrix (constant between remeshes)
   ufcx_form* L_stab = nullptr;
+  /// BDF2 (numerics.time_scheme: bdf2): matrix and right-hand side with the state of the
+  /// step before ("u1") and the constants bdf_c0, bdf_c1, bdf_c2, bdf_w
+  ufcx_form* a_bdf2 = nullptr;
+  ufcx_form* L_bdf2 = nullptr;
+  ufcx_form* load_a_bdf2 = nullptr; ///< load_a with the extrapolated curvature
   ufcx_space_fn space = nullptr; ///< space of the state coefficient "u0" of `a`, and of
                                  ///< the advection velocity "v" (models with one)
   bool advected = false;         ///< `a` has the advection term with coefficient "v"

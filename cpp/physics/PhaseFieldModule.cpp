@@ -55,14 +55,25 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
       stabilised_(scene.numerics.linearisation == scene::Linearisation::stabilised),
       symmetrisable_(stabilised_ && (scene.phase_field.model == Model::helfrich_lagrange
                                      || scene.phase_field.model == Model::helfrich_penalty)),
+      bdf2_(scene.numerics.time_scheme == scene::Numerics::TimeScheme::bdf2),
       spare_cpu_(cpus_per_rank(comm) > 1), domain_volume_(scene.domain.volume())
 {
+  for (const auto& h : scene::history_fields(scene))
+    history_names_.push_back(h);
   const auto& pf = scene.phase_field;
   const auto& nu = scene.numerics;
   dt_ = constant(nu.dt);
   lam_v_ = constant(0.0);
   lam_a_ = constant(0.0);
+  bdf_c0_ = constant(1.0);
+  bdf_c1_ = constant(1.0);
+  bdf_c2_ = constant(0.0);
+  bdf_w_ = constant(0.0);
   constants_ = {{"dt", dt_},
+                {"bdf_c0", bdf_c0_},
+                {"bdf_c1", bdf_c1_},
+                {"bdf_c2", bdf_c2_},
+                {"bdf_w", bdf_w_},
                 {"eps", constant(nu.epsilon)},
                 {"gamma", constant(pf.mobility)},
                 {"Be", constant(scene.numbers.Be)},
@@ -96,6 +107,16 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
     fields_[name] = it != fields.end() ? it->second : std::make_shared<Function>(V_);
     fields_[name]->name = name;
   }
+  // BDF2: the previous state moves with the present one (remesh, checkpoint); without it
+  // (the start) the next step is a backward Euler step.
+  for (const auto& name : history_names_)
+  {
+    auto it = fields.find(name);
+    if (it == fields.end())
+      history_.have = false;
+    fields_[name] = it != fields.end() ? it->second : std::make_shared<Function>(V_);
+    fields_[name]->name = name;
+  }
 
   // V dof -> W dof for each field, matched through the cell-local dof order (the
   // sub-elements of W are V's element).
@@ -104,6 +125,8 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
     to_mixed_.push_back(compat::dofs_in_sub_space(*V_, *(names_.size() > 1 ? W_->sub({int(i)}) : W_)));
 
   u0_ = std::make_shared<Function>(W_);
+  u1_ = std::make_shared<Function>(W_);
+  u1_->x()->set(0.0); // slots of fields without history (w) stay zero
   sources_.clear(); // built again on this mesh by set_interaction, set_orientation
   interaction_rhs_.clear();
   interaction_projection_.reset();
@@ -260,6 +283,12 @@ void PhaseFieldModule::bind_system_forms()
   const ufcx_form& L = stabilised_ ? *forms_.L_stab : *forms_.L;
   a_ = compat::create_form(a, {W_, W_}, coeffs, constants_);
   L_ = compat::create_form(L, {W_}, coeffs, constants_);
+  if (bdf2_)
+  {
+    coeffs["u1"] = u1_;
+    a_bdf2_ = compat::create_form(*forms_.a_bdf2, {W_, W_}, coeffs, constants_);
+    L_bdf2_ = compat::create_form(*forms_.L_bdf2, {W_}, coeffs, constants_);
+  }
 }
 
 void PhaseFieldModule::bind_forms()
@@ -280,14 +309,19 @@ void PhaseFieldModule::bind_forms()
     const auto& pf = scene_.phase_field;
     if (forms_.load_v)
       loads_.push_back({UnitLoad::volume, compat::create_form(*forms_.load_v, {W_}, coeffs, constants_),
-                        nullptr, nullptr, lam_v_, pf.penalty_volume});
+                        nullptr, nullptr, nullptr, lam_v_, pf.penalty_volume});
     // With surface tension the L2 flow keeps only the volume (3.83)-(3.85): the membrane
     // area is free and the tension (1/Ca) kappa acts instead of the area multiplier.
     const bool area_free = pf.model == Model::helfrich_lagrange && pf.surface_tension;
+    // BDF2 steps: the curvature of the area load at the extrapolated state (u0, u1).
+    CoefficientMap with_history = coeffs;
+    with_history["u1"] = u1_;
     if (!area_free)
       loads_.push_back({UnitLoad::area,
-                        compat::create_form(*forms_.load_a, {W_}, coeffs, constants_), nullptr,
-                        nullptr, lam_a_, pf.penalty_area});
+                        compat::create_form(*forms_.load_a, {W_}, coeffs, constants_),
+                        bdf2_ ? compat::create_form(*forms_.load_a_bdf2, {W_}, with_history, constants_)
+                              : nullptr,
+                        nullptr, nullptr, lam_a_, pf.penalty_area});
     // phi^n is the linearisation point of E_CH: bound to the standalone field, which
     // holds phi^n until the step is complete.
     volume_weights_form_ = compat::create_form(*obs.volume_weights, {V_}, {}, constants_);
@@ -388,9 +422,12 @@ void PhaseFieldModule::assemble_right_hand_sides(std::vector<const la::Vector<T>
                                 [this, &stale]
                                 {
                                   for (auto* load : stale)
-                                    periodic_->assemble_local(*load->b, *load->form);
+                                    periodic_->assemble_local(
+                                        *load->b, second_order_step_ && load->form_bdf2
+                                                      ? *load->form_bdf2
+                                                      : *load->form);
                                 });
-  periodic_->assemble_local(*b_, *L_, lifting_.get());
+  periodic_->assemble_local(*b_, second_order_step_ ? *L_bdf2_ : *L_, lifting_.get());
   for (const auto& source : sources_)
   {
     // Explicit: added to the step's right-hand side before the ghost exchange.
@@ -490,6 +527,38 @@ void PhaseFieldModule::scatter_state()
   }
 }
 
+void PhaseFieldModule::gather_history()
+{
+  auto u = u1_->x()->mutable_array();
+  for (std::size_t i = 0; i < history_names_.size(); ++i)
+  {
+    auto f = fields_.at(history_names_[i])->x()->array();
+    for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
+      u[to_mixed_[i][d]] = f[d];
+  }
+}
+
+void PhaseFieldModule::keep_history()
+{
+  auto u = u0_->x()->array();
+  for (std::size_t i = 0; i < history_names_.size(); ++i)
+  {
+    auto f = fields_.at(history_names_[i])->x()->mutable_array();
+    for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
+      f[d] = u[to_mixed_[i][d]];
+  }
+}
+
+void PhaseFieldModule::set_bdf2_coefficients(double dt)
+{
+  // Variable-step BDF2 (forms/cellphase_ufl.py, bdf2_constants), w = dt_n / dt_{n-1}
+  const double w = dt / history_.dt_prev;
+  bdf_c0_->value[0] = (1 + 2 * w) / (1 + w);
+  bdf_c1_->value[0] = 1 + w;
+  bdf_c2_->value[0] = w * w / (1 + w);
+  bdf_w_->value[0] = w;
+}
+
 StepTimings PhaseFieldModule::step(double dt)
 {
   StepTimings t;
@@ -500,6 +569,12 @@ StepTimings PhaseFieldModule::step(double dt)
     matrix_current_ = false;
   }
   gather_state();
+  second_order_step_ = bdf2_ && history_.have;
+  if (second_order_step_)
+  {
+    set_bdf2_coefficients(dt);
+    gather_history();
+  }
   update_multipliers(dt);
   if (!interaction_rhs_.empty()) // the part of w that this step's source makes (phi^n, sums now)
     interaction_projection_->project(interaction_sources(), *interaction_of_step_,
@@ -513,8 +588,9 @@ StepTimings PhaseFieldModule::step(double dt)
   {
     if (!A_) // the sparsity (and MUMPS' analysis) is kept until the next mesh
       A_ = std::make_unique<la::petsc::Matrix>(periodic_->create_matrix(*a_));
-    periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
-    periodic_->lifting(*lifting_, a_, bcs_); // -A g, (phi = -1)
+    const auto& a = second_order_step_ ? a_bdf2_ : a_; // the same sparsity
+    periodic_->assemble_matrix(A_->mat(), *a, bcs_);
+    periodic_->lifting(*lifting_, a, bcs_); // -A g, (phi = -1)
   }
   if (rebuild)
     for (auto& load : loads_)
@@ -548,6 +624,11 @@ StepTimings PhaseFieldModule::step(double dt)
   if (!loads_.empty())
     apply_constraint_loads();
   scatter_state();
+  if (bdf2_)
+  {
+    keep_history(); // phi^n becomes phi^{n-1} of the next step
+    history_ = {true, dt};
+  }
   if (dE_)
     update_interface_potential(); // the flow's next step reads dE/dphi of this state
   t.solve = seconds_since(t1);

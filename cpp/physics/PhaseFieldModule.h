@@ -82,6 +82,15 @@ public:
   int threads() const { return spare_cpu_ && forms_.load_a ? 2 : 1; }
   /// Matrix factorisations since the start (all meshes).
   int factorisations() const { return factorisations_; }
+  /// numerics.time_scheme: bdf2. The previous state is in fields() as phi_prev (and
+  /// mu_prev); with `have` false the next step is a backward Euler step (the first one).
+  struct History
+  {
+    bool have = false;
+    double dt_prev = 0; ///< the step that led to the present state
+  };
+  History history() const { return history_; }
+  void set_history(const History& h) { history_ = h; }
 
 private:
   void bind_forms();
@@ -102,6 +111,10 @@ private:
   /// has a CPU to spare; apply_constraint_loads() waits for it.
   void start_area_linearisation();
   void gather_state();   ///< standalone fields -> mixed vector u0
+  void gather_history(); ///< phi_prev, mu_prev -> mixed vector u1 (BDF2)
+  void keep_history();   ///< u0 (the state before the step) -> phi_prev, mu_prev
+  /// BDF2's coefficients for this step (variable step ratio w = dt / dt_prev).
+  void set_bdf2_coefficients(double dt);
   void scatter_state();  ///< mixed solution -> standalone fields
   double integral(const std::shared_ptr<Form>& f) const;
 
@@ -118,6 +131,14 @@ private:
   FieldMap fields_;
   std::vector<std::vector<std::int32_t>> to_mixed_; ///< per field: V dof -> W dof
   std::shared_ptr<Function> u0_;                    ///< state at t^n on W
+  // numerics.time_scheme: bdf2
+  bool bdf2_;
+  std::vector<std::string> history_names_;          ///< "phi_prev"(, "mu_prev"): names_[i] + "_prev"
+  std::shared_ptr<Function> u1_;                    ///< state at t^{n-1} on W
+  std::shared_ptr<Form> a_bdf2_, L_bdf2_;
+  std::shared_ptr<Constant> bdf_c0_, bdf_c1_, bdf_c2_, bdf_w_;
+  History history_;
+  bool second_order_step_ = false;                  ///< this step is a BDF2 step
   std::shared_ptr<const Function> velocity_;        ///< advection velocity ("v")
   bool flowing_ = false;                            ///< velocity_ is the flow's
   std::shared_ptr<Function> dE_;                    ///< dE/dphi (L2 Helfrich with flow)
@@ -133,6 +154,7 @@ private:
   {
     enum Kind { volume, area } kind;
     std::shared_ptr<Form> form;
+    std::shared_ptr<Form> form_bdf2; ///< for BDF2 steps (null: `form` serves both)
     std::unique_ptr<dolfinx::la::Vector<T>> x, b;
     std::shared_ptr<Constant> value;
     double penalty;       ///< p1 or p2 (penalty models)

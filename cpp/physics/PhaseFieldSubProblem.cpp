@@ -50,6 +50,13 @@ void PhaseFieldSubProblem::declare(FieldRegistry& fields)
     fields.declare({field(f), f + group_.label_suffix, name(), FieldSpace::scalar_p2,
                     Transfer::recompute, false, "", outside, f == "phi"});
   }
+  // numerics.time_scheme: bdf2 keeps phi^{n-1} (and mu^{n-1}) where the state lives;
+  // phi_prev keeps its integral at a remesh as phi does, so that BDF2 keeps int phi.
+  for (const auto& f : scene::history_fields(scene_))
+    fields.declare({state(f), (own_ ? "own_" : "") + f + group_.label_suffix, name(),
+                    FieldSpace::scalar_p2,
+                    f == "phi_prev" ? Transfer::keep_integral : Transfer::interpolate, true,
+                    own_ ? group_.prefix : "", f == "phi_prev" ? -1.0 : 0.0, false, true});
   // dE/dphi for the flow's interface force: mu or w itself, or the projection of (3.84),
   // which is recomputed from phi and mu on every mesh.
   const std::string potential = field("potential");
@@ -62,7 +69,10 @@ void PhaseFieldSubProblem::attach(FieldRegistry& fields)
 {
   auto phi = fields.get(state("phi"));
   FieldMap given;
-  for (const auto& f : scene::model_fields(scene_.phase_field.model))
+  auto known = scene::model_fields(scene_.phase_field.model);
+  for (const auto& f : scene::history_fields(scene_))
+    known.push_back(f);
+  for (const auto& f : known)
     if (auto u = fields.find(state(f)))
       given[f] = u;
   module_.attach(std::const_pointer_cast<Space>(phi->function_space()), given);
@@ -90,6 +100,8 @@ void PhaseFieldSubProblem::attach(FieldRegistry& fields)
     std::shared_ptr<Function> potential_copy;
     for (const auto& [f, u] : module_.fields())
     {
+      if (!fields.declared(field(f)))
+        continue; // a history field (BDF2): no copy on the shared mesh
       auto c = copy(u, fields.info(field(f)).outside);
       c->name = fields.info(field(f)).label;
       fields.set(field(f), c);
@@ -372,6 +384,9 @@ void PhaseFieldSubProblem::save(CheckpointData& data) const
     data.set(key("centre.last." + std::to_string(a)), last_centre_[a]);
   }
   data.set(key("centre.have_last"), have_last_centre_ ? 1 : 0);
+  const auto history = module_.history(); // BDF2: whether phi_prev holds a state, its step
+  data.set(key("history.have"), history.have ? 1 : 0);
+  data.set(key("history.dt_prev"), history.dt_prev);
 }
 
 void PhaseFieldSubProblem::restore(const CheckpointData& data)
@@ -388,6 +403,9 @@ void PhaseFieldSubProblem::restore(const CheckpointData& data)
     last_centre_[a] = data.scalar(key("centre.last." + std::to_string(a)));
   }
   have_last_centre_ = data.scalar(key("centre.have_last")) != 0;
+  if (data.arrays.count(key("history.have")))
+    module_.set_history({data.scalar(key("history.have")) != 0,
+                         data.scalar(key("history.dt_prev"))});
   publish_targets();
 }
 } // namespace cellphase

@@ -354,7 +354,11 @@ std::string check_report(const Scene& s)
                       + to_string(s.numerics.linearisation)
                       + (s.numerics.linearisation == Linearisation::stabilised
                              ? " (S = " + fmt(s.numerics.stabilisation) + ")"
-                             : ""));
+                             : "")
+                      + (s.numerics.time_scheme == Numerics::TimeScheme::bdf2
+                             ? ", time scheme bdf2 (second order; the first step and the "
+                               "explicit sources backward Euler)"
+                             : ", time scheme euler (first order)"));
   r.line("phase field", "mobility " + fmt(pf.mobility) + ", H0 " + fmt(pf.spontaneous_curvature)
                             + ", penalties p1 " + fmt(pf.penalty_volume) + " p2 "
                             + fmt(pf.penalty_area) + ", constraint relaxation "

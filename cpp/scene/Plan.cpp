@@ -48,6 +48,9 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     if (own_meshes(s))
       for (const auto& f : qualified(g.prefix + ".own", model_fields(m)))
         pf.writes.push_back(f);
+    // A two-step scheme's previous state: on the mesh of the state (no shared copy).
+    for (const auto& f : history_fields(s))
+      pf.writes.push_back(state_field(s, g, f));
     if (s.flow)
     {
       pf.writes.push_back(g.prefix + ".potential"); // dE/dphi, the interface force's potential

@@ -81,7 +81,7 @@ void read_numerics(const Section& top, Scene& s)
                          "numerics.end_time");
   const Section n = top.section("numerics");
   n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "limits",
-                "petsc", "split", "solver", "stop_when_settled"});
+                "petsc", "split", "solver", "stop_when_settled", "time_scheme"});
   Numerics& num = s.numerics;
   num.epsilon = n.number("epsilon", positive());
   num.dt = n.number("dt", positive());
@@ -126,6 +126,20 @@ void read_numerics(const Section& top, Scene& s)
     num.split = n.strings("split"); // checked against the plan in check_split
   num.solver = n.choice("solver", num.solver,
                         {{"direct", Numerics::Solver::direct}, {"reuse", Numerics::Solver::reuse}});
+  num.time_scheme = n.choice("time_scheme", num.time_scheme,
+                             {{"euler", Numerics::TimeScheme::euler},
+                              {"bdf2", Numerics::TimeScheme::bdf2}});
+  if (num.time_scheme == Numerics::TimeScheme::bdf2)
+  {
+    // BDF2 needs the Taylor linearisation about its extrapolation; the stabilised scheme's
+    // S (phi - phi^n) is a first-order perturbation, and (2.27)'s multiplier is explicit.
+    if (num.linearisation == Linearisation::stabilised)
+      n.fail("time_scheme", "bdf2 needs numerics.linearisation: taylor (the stabilised "
+                            "scheme's S (phi - phi^n) term is first order in dt)");
+    if (s.phase_field.model == Model::allen_cahn_volume)
+      n.fail("time_scheme", "bdf2 does not suit allen_cahn_volume, whose multiplier (2.27) is "
+                            "explicit (first order); use euler");
+  }
 }
 
 } // namespace cellphase::scene

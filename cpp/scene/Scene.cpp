@@ -60,6 +60,16 @@ std::vector<std::string> model_fields(Model m)
   return {"phi"};
 }
 
+std::vector<std::string> history_fields(const Scene& s)
+{
+  if (s.numerics.time_scheme != Numerics::TimeScheme::bdf2)
+    return {};
+  std::vector<std::string> out{"phi_prev"};
+  if (s.phase_field.model != Model::allen_cahn && s.phase_field.model != Model::allen_cahn_volume)
+    out.push_back("mu_prev"); // the extrapolated mu* of the Taylor linearisation
+  return out;
+}
+
 bool is_helfrich(Model m)
 {
   return m == Model::helfrich_lagrange || m == Model::helfrich_penalty

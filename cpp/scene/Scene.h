@@ -196,6 +196,9 @@ struct Numerics
   /// Linear solves: a direct factorisation of every new matrix, or factors reused as the
   /// preconditioner of GMRES while they serve (solve/LinearSolver, reuse_factorisations).
   enum class Solver { direct, reuse } solver = Solver::direct;
+  /// Time discretisation of the phase field: backward Euler (the thesis', first order) or
+  /// the variable-step BDF2 (second order, forms/cellphase_ufl.py bdf2_constants).
+  enum class TimeScheme { euler, bdf2 } time_scheme = TimeScheme::euler;
   std::optional<SettledStop> stop_when_settled;
 };
 
@@ -392,6 +395,9 @@ const char* to_string(Model m);
 const char* to_string(Linearisation l);
 /// Fields a model solves for, in the order of its mixed space (phi first).
 std::vector<std::string> model_fields(Model m);
+/// The fields of the phase field's previous step that a two-step scheme keeps (phi_prev,
+/// mu_prev with numerics.time_scheme: bdf2; none for backward Euler).
+std::vector<std::string> history_fields(const Scene& s);
 bool is_helfrich(Model m);
 const char* to_string(WallType w);
 const char* to_string(OutputFormat f);
