@@ -8,6 +8,7 @@
 #include "mesh/FieldTransfer.h"
 #include "physics/PhaseFieldSubProblem.h"
 #include "scene/Check.h"
+#include "scene/Resolution.h"
 #include "scene/Shapes.h"
 #include "util/Clock.h"
 #include "util/Mpi.h"
@@ -56,6 +57,8 @@ Simulation::Simulation(const scene::Scene& scene, MPI_Comm comm, bool restart,
 {
   for (auto& e : extra)
     split_.push_back(std::move(e));
+  if (scene.numerics.adaptive_dt)
+    step_control_.emplace(*scene.numerics.adaptive_dt, scene.numerics.dt);
   for (auto& sub : split_)
     sub->declare(fields_);
   for (const auto& key : fields_.mesh_keys())
@@ -234,6 +237,8 @@ std::string Simulation::save_checkpoint(const LoopState& at)
   data.texts["fields"] = names;
   for (const auto& sub : split_)
     sub->save(data);
+  if (step_control_)
+    step_control_->save(data);
   data.texts["model"] = scene::to_string(scene_.phase_field.model);
   data.texts["scene"] = scene_.resolved_yaml;
   data.texts["scene.source"] = scene_.source;
@@ -308,6 +313,8 @@ Simulation::LoopState Simulation::restore()
     }
     for (const auto& sub : split_)
       sub->restore(data);
+    if (step_control_)
+      step_control_->restore(data);
     attach_all();
     for (const auto& name : fields_.names())
       if (fields_.info(name).checkpointed && fields_.info(name).space == FieldSpace::other)
@@ -505,6 +512,71 @@ void Simulation::keep_good_state(const LoopState& at)
       auto x = f->x()->array();
       good_.values[name].assign(x.begin(), x.end());
     }
+  if (step_control_) // a rejected step is repeated from here
+  {
+    good_.scalars = {};
+    for (const auto& sub : split_)
+      sub->save(good_.scalars);
+  }
+}
+
+void Simulation::restore_good_state()
+{
+  for (const auto& name : fields_.names())
+    if (auto f = fields_.find(name))
+    {
+      auto x = f->x()->mutable_array();
+      const auto& good = good_.values.at(name);
+      std::copy(good.begin(), good.end(), x.begin());
+    }
+  if (step_control_)
+    for (const auto& sub : split_)
+      sub->restore(good_.scalars);
+}
+
+double Simulation::max_flow_speed() const
+{
+  auto v = fields_.find("flow.v");
+  if (!v)
+    return 0;
+  const int bs = v->function_space()->dofmap()->index_map_bs();
+  auto x = v->x()->array();
+  double largest = 0;
+  for (std::size_t i = 0; i + bs <= x.size(); i += bs)
+  {
+    double s = 0;
+    for (int k = 0; k < bs; ++k)
+      s += x[i + k] * x[i + k];
+    largest = std::max(largest, s);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return std::sqrt(largest);
+}
+
+double Simulation::take_step(const LoopState& at, double dt, StepTimings& timings)
+{
+  for (;;)
+  {
+    try
+    {
+      timings = step(dt, at.time);
+    }
+    catch (const SolverError& e)
+    {
+      fail({at.step + 1, at.time + dt}, solving_ ? solving_->description() : "time loop", e.what());
+    }
+    if (!step_control_)
+      return dt;
+    double estimate = -1;
+    for (const auto& sub : split_)
+      estimate = std::max(estimate, sub->time_error());
+    const auto verdict = step_control_->judge(dt, estimate);
+    last_estimate_ = estimate;
+    if (verdict.accept)
+      return dt;
+    restore_good_state(); // and again from t^n with the smaller step
+    dt = std::min(verdict.next, scene_.numerics.end_time - at.time);
+  }
 }
 
 std::string Simulation::owner_of(const std::string& field) const
@@ -520,13 +592,7 @@ void Simulation::fail(const LoopState& at, const std::string& module, const std:
 {
   // Back to the fields at the start of the failed step (same mesh: remeshing happens
   // before a step), then save them as a checkpoint and as output.
-  for (const auto& name : fields_.names())
-    if (auto f = fields_.find(name))
-    {
-      auto x = f->x()->mutable_array();
-      const auto& good = good_.values.at(name);
-      std::copy(good.begin(), good.end(), x.begin());
-    }
+  restore_good_state();
   std::string saved;
   try
   {
@@ -569,7 +635,7 @@ void Simulation::check_health(const LoopState& at, const Observation& row)
 }
 
 void Simulation::record(const LoopState& at, const StepTimings& timings, double remesh_time,
-                        double volume_change)
+                        double volume_change, bool last)
 {
   Observation row;
   for (auto* sub : attach_order_)
@@ -587,9 +653,13 @@ void Simulation::record(const LoopState& at, const StepTimings& timings, double 
   r.timings = timings;
   r.remesh_time = remesh_time;
   r.remesh_volume_change = volume_change;
+  if (step_control_) // the step that led to this row and the rejections so far
+    r.extra.insert(r.extra.end(), {{"dt", last_dt_},
+                                   {"time_error", last_estimate_},
+                                   {"rejected_steps", double(step_control_->rejected())}});
   auto t0 = Clock::now();
   const int every = scene_.output.every;
-  if ((every > 0 && at.step % every == 0) || at.step == last_step_)
+  if ((every > 0 && at.step % every == 0) || last)
     write_fields(at.time, at.step);
   r.output_time = seconds_since(t0);
   if (settled_watch_)
@@ -632,7 +702,12 @@ void Simulation::run()
   const auto& nu = scene_.numerics;
   const int steps = last_step_;
   Progress progress(comm_, at.time, nu.end_time, scene_.output.progress);
-  while (at.step < steps)
+  // A fixed step: `steps` steps, the last one shortened to end at end_time. Adaptive: until
+  // end_time, each step as the error estimate of the one before says.
+  auto finished = [&](const LoopState& s)
+  { return step_control_ ? s.time >= nu.end_time : s.step >= steps; };
+  const double finest_cell = scene::finest_cell_size(scene_);
+  while (!finished(at))
   {
     const int n = at.step + 1;
     double remesh_time = 0, volume_change = 0;
@@ -642,24 +717,21 @@ void Simulation::run()
       remesh_time = remesh(volume_change);
     at.remeshed = remesh_due;
     keep_good_state(at);
-    const double dt = std::min(nu.dt, nu.end_time - at.time);
+    const double time_left = nu.end_time - at.time;
     StepTimings timings;
-    try
-    {
-      timings = step(dt, at.time);
-    }
-    catch (const SolverError& e)
-    {
-      fail({n, at.time + dt}, solving_ ? solving_->description() : "time loop", e.what());
-    }
-    at = {n, n == steps ? nu.end_time : at.time + dt};
+    last_dt_ = take_step(at, step_control_ ? step_control_->next(max_flow_speed(), finest_cell,
+                                                                  time_left)
+                                           : std::min(nu.dt, time_left),
+                         timings);
+    const bool last = step_control_ ? last_dt_ >= time_left : n == steps;
+    at = {n, last ? nu.end_time : at.time + last_dt_};
     test_hooks::inject_nan_after_step(fields_, n);
-    record(at, timings, remesh_time, volume_change);
+    record(at, timings, remesh_time, volume_change, last);
     progress.update(n, at.time);
     std::string checkpoint;
-    if (every > 0 && (n == steps || n % every == 0))
+    if (every > 0 && (last || n % every == 0))
       checkpoint = save_checkpoint(at);
-    if (const auto why = n < steps ? settled_now() : std::nullopt)
+    if (const auto why = !last ? settled_now() : std::nullopt)
     {
       // Settled before end_time: the final state is written and checkpointed as at the end.
       const int out_every = scene_.output.every;
@@ -673,7 +745,7 @@ void Simulation::run()
       log_summary();
       return;
     }
-    if (n < steps && stop_signal::requested(comm_))
+    if (!last && stop_signal::requested(comm_))
     {
       if (checkpoint.empty())
         checkpoint = save_checkpoint(at);
@@ -688,7 +760,14 @@ void Simulation::run()
           checkpoint.c_str(), command.c_str()));
     }
   }
-  progress.finish(steps, at.time);
+  progress.finish(at.step, at.time);
+  if (step_control_)
+    log("  adaptive time step: %d steps, %d rejected and repeated%s\n", at.step,
+        step_control_->rejected(),
+        step_control_->rejected_at_dt_min()
+            ? format(", %d accepted at dt_min beyond the tolerance",
+                     step_control_->rejected_at_dt_min()).c_str()
+            : "");
   log_summary();
 }
 

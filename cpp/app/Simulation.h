@@ -5,6 +5,7 @@
 #pragma once
 #include "app/CheckpointStore.h"
 #include "app/SettledWatch.h"
+#include "app/StepSizeControl.h"
 #include "core/FieldRegistry.h"
 #include "core/SubProblem.h"
 #include "io/FieldOutput.h"
@@ -67,6 +68,7 @@ private:
   {
     LoopState at;
     std::map<std::string, std::vector<double>> values;
+    CheckpointData scalars; ///< the sub-problems' (numerics.adaptive_dt only)
   };
 
   void check_plan() const;
@@ -89,8 +91,9 @@ private:
   std::map<std::string, std::shared_ptr<Mesh>> rebuild_meshes();
   /// One step of the split from `time`; sub-problems not yet active are skipped.
   StepTimings step(double dt, double time);
+  /// `last`: the row of end_time (the fields are written whatever output.every says).
   void record(const LoopState& at, const StepTimings& timings, double remesh_time,
-              double volume_change);
+              double volume_change, bool last = false);
   /// Throws NumericalFailure (after saving the last good state) if a field is not finite
   /// or a sub-problem's state is beyond the scene's limits.
   void check_health(const LoopState& at, const Observation& row);
@@ -99,6 +102,13 @@ private:
   std::string owner_of(const std::string& field) const;
   std::string save_checkpoint(const LoopState& at);
   void keep_good_state(const LoopState& at);
+  /// The fields (and with numerics.adaptive_dt the sub-problems' scalars) of the good state.
+  void restore_good_state();
+  /// One step from `at` of size dt, or with numerics.adaptive_dt the first of the tried
+  /// steps (from dt down) whose error estimate is accepted; returns its size.
+  double take_step(const LoopState& at, double dt, StepTimings& timings);
+  /// numerics.adaptive_dt: the largest speed of the flow (0 without one), for the CFL limit.
+  double max_flow_speed() const;
   void log(const char* fmt, ...) const;
 
   const scene::Scene& scene_;
@@ -119,6 +129,9 @@ private:
   void log_summary() const;
   std::map<std::string, std::unique_ptr<FieldOutput>> writers_; ///< by mesh key
   int last_step_ = 0;
+  std::optional<StepSizeControl> step_control_; ///< numerics.adaptive_dt
+  double last_dt_ = 0;                          ///< the step of the last row
+  double last_estimate_ = -1;                   ///< its error estimate (< 0: none)
   const SubProblem* solving_ = nullptr; ///< the sub-problem being stepped
   GoodState good_;
 };

@@ -62,6 +62,9 @@ public:
   /// Its checkpointed scalars (keys begin with its name).
   virtual void save(CheckpointData&) const {}
   virtual void restore(const CheckpointData&) {}
+  /// Estimate of the local time error of its last step (numerics.adaptive_dt), < 0 if it
+  /// makes none (or cannot yet: the first step).
+  virtual double time_error() const { return -1; }
   virtual std::int64_t num_dofs() const { return 0; }
   virtual int factorisations() const { return 0; }
 

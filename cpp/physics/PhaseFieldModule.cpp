@@ -549,6 +549,28 @@ void PhaseFieldModule::keep_history()
   }
 }
 
+void PhaseFieldModule::estimate_time_error(double dt)
+{
+  time_error_ = -1;
+  if (!history_.have)
+    return;
+  // phi(t^{n+1}) - phi* = phi'' dt (dt + dt_prev) / 2 + O(dt^3): scaled by dt / (dt + dt_prev)
+  // to backward Euler's local error phi'' dt^2 / 2 (for BDF2 an upper bound).
+  const double w = dt / history_.dt_prev;
+  auto now = fields_.at("phi")->x()->array();
+  auto before = fields_.at("phi_prev")->x()->array();
+  auto u = u0_->x()->array();
+  const std::int32_t owned = V_->dofmap()->index_map->size_local();
+  double largest = 0;
+  for (std::int32_t d = 0; d < owned; ++d)
+  {
+    const double extrapolated = (1 + w) * u[to_mixed_[0][d]] - w * before[d];
+    largest = std::max(largest, std::abs(now[d] - extrapolated));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  time_error_ = largest * dt / (dt + history_.dt_prev);
+}
+
 void PhaseFieldModule::set_bdf2_coefficients(double dt)
 {
   // Variable-step BDF2 (forms/cellphase_ufl.py, bdf2_constants), w = dt_n / dt_{n-1}
@@ -624,8 +646,9 @@ StepTimings PhaseFieldModule::step(double dt)
   if (!loads_.empty())
     apply_constraint_loads();
   scatter_state();
-  if (bdf2_)
+  if (!history_names_.empty())
   {
+    estimate_time_error(dt);
     keep_history(); // phi^n becomes phi^{n-1} of the next step
     history_ = {true, dt};
   }

@@ -90,6 +90,11 @@ public:
     double dt_prev = 0; ///< the step that led to the present state
   };
   History history() const { return history_; }
+  /// The local time error of the last step as backward Euler's, estimated from the
+  /// extrapolation phi* of phi^n and phi^{n-1}: max over the nodes of
+  /// |phi^{n+1} - phi*| dt / (dt + dt_prev) (= |phi''| dt^2 / 2 to leading order);
+  /// < 0 when there was no phi^{n-1} (the first step) or none is kept.
+  double time_error() const { return time_error_; }
   void set_history(const History& h) { history_ = h; }
 
 private:
@@ -139,6 +144,8 @@ private:
   std::shared_ptr<Constant> bdf_c0_, bdf_c1_, bdf_c2_, bdf_w_;
   History history_;
   bool second_order_step_ = false;                  ///< this step is a BDF2 step
+  double time_error_ = -1;                          ///< of the last step, see time_error()
+  void estimate_time_error(double dt);              ///< before keep_history()
   std::shared_ptr<const Function> velocity_;        ///< advection velocity ("v")
   bool flowing_ = false;                            ///< velocity_ is the flow's
   std::shared_ptr<Function> dE_;                    ///< dE/dphi (L2 Helfrich with flow)

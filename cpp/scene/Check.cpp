@@ -425,8 +425,20 @@ std::string check_report(const Scene& s)
                           : std::string("never (mesh built once)"));
 
   const long steps = number_of_steps(s);
-  r.line("time step", fmt(s.numerics.dt) + ", end time " + fmt(s.numerics.end_time));
-  r.line("steps", std::to_string(steps));
+  if (const auto& a = s.numerics.adaptive_dt)
+  {
+    r.line("time step", "adaptive from " + fmt(s.numerics.dt) + ", in [" + fmt(a->dt_min) + ", "
+                            + fmt(a->dt_max) + "], end time " + fmt(s.numerics.end_time));
+    r.line("step control", "local error estimate <= " + fmt(a->tolerance) + " (max |phi - phi*| "
+                               "over the nodes), growth <= " + fmt(a->growth) + ", safety "
+                               + fmt(a->safety) + (s.flow ? ", cfl " + fmt(a->cfl) : ""));
+    r.line("steps", "as the estimate says (" + std::to_string(steps) + " at the first step)");
+  }
+  else
+  {
+    r.line("time step", fmt(s.numerics.dt) + ", end time " + fmt(s.numerics.end_time));
+    r.line("steps", std::to_string(steps));
+  }
   if (const auto& w = s.numerics.stop_when_settled)
     r.line("stop when settled", w->observable + " varies by at most max(" + fmt(w->relative)
                                     + " |value|, " + fmt(w->absolute) + ") over "

@@ -1,4 +1,5 @@
 #include "scene/Sections.h"
+#include <cmath>
 
 namespace cellphase::scene
 {
@@ -62,6 +63,32 @@ std::optional<SettledStop> read_settled_stop(const Section& n, double end_time)
   return stop;
 }
 
+std::optional<AdaptiveDt> read_adaptive_dt(const Section& n, const Numerics& num)
+{
+  if (!n.has("adaptive_dt"))
+    return std::nullopt;
+  const Section a = n.section("adaptive_dt");
+  a.allow_only({"tolerance", "dt_min", "dt_max", "growth", "safety", "cfl"});
+  AdaptiveDt ad;
+  ad.tolerance = a.number("tolerance", positive());
+  ad.dt_min = a.number("dt_min", num.dt * 1e-3, positive());
+  ad.dt_max = a.number("dt_max", num.end_time, positive());
+  if (ad.dt_min > num.dt)
+    a.fail("dt_min", "found " + fmt(ad.dt_min) + ", expected at most numerics.dt = "
+                         + fmt(num.dt) + " (the first step)");
+  if (ad.dt_max < num.dt)
+    a.fail("dt_max", "found " + fmt(ad.dt_max) + ", expected at least numerics.dt = "
+                         + fmt(num.dt) + " (the first step)");
+  if (num.end_time / ad.dt_min > 1e9)
+    a.fail("dt_min", "end_time / dt_min = " + fmt(num.end_time / ad.dt_min)
+                         + " steps; at most 1e9 steps are allowed");
+  // Variable-step BDF2 is zero-stable for step ratios below 1 + sqrt 2.
+  ad.growth = a.number("growth", ad.growth, open(1, 1 + std::sqrt(2.0)));
+  ad.safety = a.number("safety", ad.safety, Range{0, 1, true, false}); // (0, 1]
+  ad.cfl = a.number("cfl", ad.cfl, positive());
+  return ad;
+}
+
 void read_limits(const Section& l, Model model, Limits& limits)
 {
   l.allow_only({"phi_bound", "volume_drift"});
@@ -74,6 +101,21 @@ void read_limits(const Section& l, Model model, Limits& limits)
 }
 } // namespace
 
+void check_adaptive_dt(const Section& top, const Scene& s)
+{
+  if (!s.numerics.adaptive_dt)
+    return;
+  // A rejected step is repeated from the fields and the checkpointed scalars of the
+  // sub-problems; the species and the orientation field keep state beyond those.
+  const Section n = top.section("numerics");
+  if (s.reaction_diffusion)
+    n.fail("adaptive_dt", "is not available with reaction_diffusion; remove adaptive_dt "
+                          "(fixed step numerics.dt)");
+  if (s.polar_gel)
+    n.fail("adaptive_dt", "is not available with polar_gel; remove adaptive_dt (fixed step "
+                          "numerics.dt)");
+}
+
 void read_numerics(const Section& top, Scene& s)
 {
   if (!top.has("numerics"))
@@ -81,7 +123,7 @@ void read_numerics(const Section& top, Scene& s)
                          "numerics.end_time");
   const Section n = top.section("numerics");
   n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "limits",
-                "petsc", "split", "solver", "stop_when_settled", "time_scheme"});
+                "petsc", "split", "solver", "stop_when_settled", "time_scheme", "adaptive_dt"});
   Numerics& num = s.numerics;
   num.epsilon = n.number("epsilon", positive());
   num.dt = n.number("dt", positive());
@@ -129,6 +171,7 @@ void read_numerics(const Section& top, Scene& s)
   num.time_scheme = n.choice("time_scheme", num.time_scheme,
                              {{"euler", Numerics::TimeScheme::euler},
                               {"bdf2", Numerics::TimeScheme::bdf2}});
+  num.adaptive_dt = read_adaptive_dt(n, num);
   if (num.time_scheme == Numerics::TimeScheme::bdf2)
   {
     // BDF2 needs the Taylor linearisation about its extrapolation; the stabilised scheme's

@@ -62,10 +62,12 @@ std::vector<std::string> model_fields(Model m)
 
 std::vector<std::string> history_fields(const Scene& s)
 {
-  if (s.numerics.time_scheme != Numerics::TimeScheme::bdf2)
+  const bool bdf2 = s.numerics.time_scheme == Numerics::TimeScheme::bdf2;
+  if (!bdf2 && !s.numerics.adaptive_dt) // the error estimate extrapolates from phi^{n-1}
     return {};
   std::vector<std::string> out{"phi_prev"};
-  if (s.phase_field.model != Model::allen_cahn && s.phase_field.model != Model::allen_cahn_volume)
+  if (bdf2 && s.phase_field.model != Model::allen_cahn
+      && s.phase_field.model != Model::allen_cahn_volume)
     out.push_back("mu_prev"); // the extrapolated mu* of the Taylor linearisation
   return out;
 }

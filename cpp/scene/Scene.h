@@ -181,6 +181,18 @@ struct SettledStop
   double after = 0; ///< not before this time
 };
 
+/// numerics.adaptive_dt: the step follows an estimate of the local time error of the phase
+/// fields (docs/scenes.md, "Adaptive time step"); numerics.dt is the first step.
+struct AdaptiveDt
+{
+  double tolerance = 1e-3; ///< largest accepted estimate (max over the nodes, units of phi)
+  double dt_min = 0;       ///< smallest step; a step this small is accepted whatever its estimate
+  double dt_max = 0;       ///< largest step
+  double growth = 2;       ///< largest ratio of a step to the one before (BDF2 needs <= 1 + sqrt2)
+  double safety = 0.9;     ///< the next step aims at safety^2 of the tolerance
+  double cfl = 0.5;        ///< with a flow: max |v| dt <= cfl * the finest cell size
+};
+
 struct Numerics
 {
   double epsilon = 0.03;
@@ -200,6 +212,8 @@ struct Numerics
   /// the variable-step BDF2 (second order, forms/cellphase_ufl.py bdf2_constants).
   enum class TimeScheme { euler, bdf2 } time_scheme = TimeScheme::euler;
   std::optional<SettledStop> stop_when_settled;
+  /// Adaptive time step (numerics.adaptive_dt, app/StepSizeControl): absent, every step is dt.
+  std::optional<AdaptiveDt> adaptive_dt;
 };
 
 struct Checkpoints
@@ -395,8 +409,9 @@ const char* to_string(Model m);
 const char* to_string(Linearisation l);
 /// Fields a model solves for, in the order of its mixed space (phi first).
 std::vector<std::string> model_fields(Model m);
-/// The fields of the phase field's previous step that a two-step scheme keeps (phi_prev,
-/// mu_prev with numerics.time_scheme: bdf2; none for backward Euler).
+/// The fields of the phase field's previous step that a two-step scheme or the error
+/// estimate of numerics.adaptive_dt keeps (phi_prev; mu_prev with numerics.time_scheme:
+/// bdf2); none for backward Euler at a fixed step.
 std::vector<std::string> history_fields(const Scene& s);
 bool is_helfrich(Model m);
 const char* to_string(WallType w);

@@ -12,6 +12,8 @@ void read_boundary(const yaml::Section& top, Scene& s);
 void read_phase_field(const yaml::Section& top, Scene& s);  ///< phase_field
 void read_numbers(const yaml::Section& top, Scene& s);      ///< numbers or units
 void read_numerics(const yaml::Section& top, Scene& s);     ///< numerics
+/// numerics.adaptive_dt against the sub-problems of the scene (after all sections are read)
+void check_adaptive_dt(const yaml::Section& top, const Scene& s);
 void read_cells(const yaml::Section& top, Scene& s);        ///< cells (shapes only)
 void read_flow(const yaml::Section& top, Scene& s);         ///< flow (optional)
 void read_interaction(const yaml::Section& top, Scene& s);  ///< interaction (after cells)
