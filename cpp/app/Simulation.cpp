@@ -563,7 +563,14 @@ double Simulation::take_step(const LoopState& at, double dt, StepTimings& timing
     }
     catch (const SolverError& e)
     {
-      fail({at.step + 1, at.time + dt}, solving_ ? solving_->description() : "time loop", e.what());
+      // With adaptive steps a solver that fails is a step too large: a quarter of it.
+      const auto& a = scene_.numerics.adaptive_dt;
+      if (!step_control_ || dt <= a->dt_min * (1 + 1e-12))
+        fail({at.step + 1, at.time + dt}, solving_ ? solving_->description() : "time loop",
+             e.what());
+      restore_good_state();
+      dt = step_control_->reject(dt, 0.25);
+      continue;
     }
     if (!step_control_)
       return dt;
@@ -773,14 +780,19 @@ void Simulation::run()
 
 void Simulation::log_summary() const
 {
-  int factorisations = 0;
+  int factorisations = 0, iterations = 0;
   for (const auto& sub : split_)
+  {
     factorisations += sub->factorisations();
+    iterations += sub->krylov_iterations();
+  }
   std::string fields_at;
   for (const auto& [key, writer] : writers_)
     fields_at += (fields_at.empty() ? ", fields in " : ", ")
                  + std::filesystem::path(writer->index_path()).filename().string();
-  log("  %d factorisations; observables in %s/observables.csv%s\n", factorisations,
-      scene_.output.directory.c_str(), fields_at.c_str());
+  const std::string krylov =
+      iterations > 0 ? ", " + std::to_string(iterations) + " Krylov iterations" : "";
+  log("  %d factorisations%s; observables in %s/observables.csv%s\n", factorisations,
+      krylov.c_str(), scene_.output.directory.c_str(), fields_at.c_str());
 }
 } // namespace cellphase

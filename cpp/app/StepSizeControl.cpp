@@ -43,6 +43,13 @@ StepSizeControl::Verdict StepSizeControl::judge(double dt, double estimate)
   return {false, resized};
 }
 
+double StepSizeControl::reject(double dt, double factor)
+{
+  ++rejected_;
+  proposed_ = std::max(dt * factor, settings_.dt_min);
+  return proposed_;
+}
+
 void StepSizeControl::save(CheckpointData& data) const
 {
   data.set("adaptive_dt.proposed", proposed_);

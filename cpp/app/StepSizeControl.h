@@ -25,6 +25,9 @@ public:
   /// The step of size dt had this estimate (< 0: none, e.g. the first step: accepted,
   /// the next step as large). A step at dt_min is accepted whatever its estimate.
   Verdict judge(double dt, double estimate);
+  /// A step of size dt that failed otherwise (its solver): rejected, the next try is
+  /// dt * factor (at least dt_min).
+  double reject(double dt, double factor);
   int rejected() const { return rejected_; }
   int rejected_at_dt_min() const { return forced_; }
 

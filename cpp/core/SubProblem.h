@@ -67,6 +67,8 @@ public:
   virtual double time_error() const { return -1; }
   virtual std::int64_t num_dofs() const { return 0; }
   virtual int factorisations() const { return 0; }
+  /// Krylov iterations of its solves since the start (numerics.solver: reuse).
+  virtual int krylov_iterations() const { return 0; }
 
 private:
   scene::PlanStep step_;

@@ -376,12 +376,15 @@ FlowTimings FlowModule::step(double dt)
   if (t.factorised)
   {
     t.factorise = solver_->set_operator(A_->mat());
-    ++factorisations_;
+    factorisations_ += !params_.reuse_factorisations; // with reuse: those made (below)
     remember_matrix_inputs(dt);
     LOG(INFO) << "flow: factorisation " << factorisations_ << " (" << t.factorise << " s)";
   }
   auto t1 = Clock::now();
   solver_->solve(*b_, *x_, "the flow");
+  const auto [factorised, iterations] = solver_->take_counts();
+  factorisations_ += params_.reuse_factorisations ? factorised : 0;
+  krylov_iterations_ += iterations;
   periodic_->backsubstitute(*x_); // slave values from their masters
   store_solution();
   t.solve = seconds_since(t1);

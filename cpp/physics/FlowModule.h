@@ -137,6 +137,8 @@ public:
   FlowObservables observables() const;
   /// Matrix factorisations since construction (all meshes).
   int factorisations() const { return factorisations_; }
+  /// GMRES iterations since construction (numerics.solver: reuse; 0 with direct solves).
+  int krylov_iterations() const { return krylov_iterations_; }
   /// The pressure is fixed at one dof and shifted to zero mean (closed box).
   bool pressure_pinned() const { return pinned_; }
   std::int64_t num_dofs() const;
@@ -187,6 +189,6 @@ private:
   double factorised_dt_ = 0;
   std::vector<T> factorised_phi_, factorised_mu_, factorised_v_, factorised_phi_cells_;
   std::vector<T> factorised_eta_;
-  int factorisations_ = 0;
+  int factorisations_ = 0, krylov_iterations_ = 0;
 };
 } // namespace cellphase

@@ -26,6 +26,7 @@ public:
   void observe(Observation& row) override;
   std::int64_t num_dofs() const override { return flow_.num_dofs(); }
   int factorisations() const override { return flow_.factorisations(); }
+  int krylov_iterations() const override { return flow_.krylov_iterations(); }
 
 private:
   /// Several cells: f_membrane <- L2 projection of sum_i capillary mu_i grad phi_i (7.12).

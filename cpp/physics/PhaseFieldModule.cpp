@@ -628,11 +628,12 @@ StepTimings PhaseFieldModule::step(double dt)
       solver_ = std::make_unique<LinearSolver>(comm_, "phasefield_", scene_.numerics.petsc,
                                                symmetrisable_ && !flowing_ ? Symmetry::symmetric
                                                                            : Symmetry::general);
-      if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
+      reuse_ = scene_.numerics.solver == scene::Numerics::Solver::reuse;
+      if (reuse_)
         solver_->reuse_factorisations(1e-10, 30, 8);
     }
     t.factorise = solver_->set_operator(A_->mat());
-    ++factorisations_;
+    factorisations_ += !reuse_; // with reuse: those the solver made (below)
     matrix_current_ = true;
   }
   auto t1 = Clock::now();
@@ -640,6 +641,9 @@ StepTimings PhaseFieldModule::step(double dt)
     start_area_linearisation();
   solver_->solve(rhs, solutions,
                  std::string("phase field (") + scene::to_string(scene_.phase_field.model) + ")");
+  const auto [factorised, iterations] = solver_->take_counts();
+  factorisations_ += reuse_ ? factorised : 0;
+  krylov_iterations_ += iterations;
   // Slave values of every solution; the unit loads have zero Dirichlet values.
   for (std::size_t i = 0; i < solutions.size(); ++i)
     periodic_->backsubstitute(*solutions[i], i > 0);

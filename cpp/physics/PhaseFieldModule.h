@@ -82,6 +82,8 @@ public:
   int threads() const { return spare_cpu_ && forms_.load_a ? 2 : 1; }
   /// Matrix factorisations since the start (all meshes).
   int factorisations() const { return factorisations_; }
+  /// GMRES iterations since the start (numerics.solver: reuse; 0 with direct solves).
+  int krylov_iterations() const { return krylov_iterations_; }
   /// numerics.time_scheme: bdf2. The previous state is in fields() as phi_prev (and
   /// mu_prev); with `have` false the next step is a backward Euler step (the first one).
   struct History
@@ -199,6 +201,7 @@ private:
   std::shared_ptr<Constant> dt_, lam_v_, lam_a_;
   ConstraintTargets targets_;
   double domain_volume_;
-  int factorisations_ = 0;
+  int factorisations_ = 0, krylov_iterations_ = 0;
+  bool reuse_ = false; ///< numerics.solver: reuse: the solver counts its factorisations
 };
 } // namespace cellphase

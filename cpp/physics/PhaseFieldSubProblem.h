@@ -32,6 +32,7 @@ public:
   void restore(const CheckpointData& data) override;
   std::int64_t num_dofs() const override { return module_.num_dofs(); }
   int factorisations() const override { return module_.factorisations(); }
+  int krylov_iterations() const override { return module_.krylov_iterations(); }
   double time_error() const override { return module_.time_error(); }
   int threads() const { return module_.threads(); }
 
