@@ -51,6 +51,8 @@ a_stokes = momentum_a(v, p, w, q, inertia=False) + membrane_a   # Re = 0
 a_cells = momentum_a(v, p, w, q, eta=eta_cells) + membrane_a      # the cells' viscosities (7.12)
 a_stokes_cells = momentum_a(v, p, w, q, inertia=False, eta=eta_cells) + membrane_a
 L_stokes = momentum_L(w, inertia=False) + membrane_L
+a_bdf2 = momentum_a(v, p, w, q, bdf2=True) + membrane_a          # numerics.time_scheme: bdf2
+L_bdf2 = momentum_L(w, bdf2=True) + membrane_L
 
 # Observables
 membrane_delta = delta * dxq                                            # int delta_phi ~ |Gamma|
@@ -60,7 +62,7 @@ lambda_dissipation = xi * eps**2 * phi_cells**2 * inner(grad(lam_h), grad(lam_h)
 lambda_membrane = lam_h * delta * dxq                                  # int lambda delta_phi
 forms = [a, L, a_stokes, L_stokes, kinetic_energy, divergence_sq, phase_weight, phase_velocity_0,
          phase_velocity_1, pressure_integral, domain_volume, membrane_delta, energy_ch,
-         lambda_dissipation, lambda_membrane, a_cells, a_stokes_cells]
+         lambda_dissipation, lambda_membrane, a_cells, a_stokes_cells, a_bdf2, L_bdf2]
 if DIM == 3:
     phase_velocity_2 = phase_velocity[2]
     forms.append(phase_velocity_2)

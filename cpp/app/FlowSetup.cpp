@@ -2,6 +2,7 @@
 #include "mesh/BoundaryTags.h"
 #include "scene/Formula.h"
 #include "scene/MeshDomain.h"
+#include "scene/Plan.h"
 #include <algorithm>
 
 namespace cellphase
@@ -98,6 +99,8 @@ FlowParameters flow_parameters(const scene::Scene& scene)
   p.periodic = scene.domain.periodic; // their sides are open above: no wall there
   p.petsc = f.petsc;
   p.reuse_factorisations = scene.numerics.solver == scene::Numerics::Solver::reuse;
+  p.second_order = !scene::flow_history_fields(scene).empty();
+  p.extrapolate_potential = scene::flow_extrapolates_potential(scene);
   if (f.inextensibility)
   {
     const scene::Inextensibility& in = *f.inextensibility;

@@ -51,6 +51,11 @@ FlowModule::FlowModule(const FlowParameters& parameters, MPI_Comm comm, FlowForm
                 {"degenerate", constant(p.degenerate_mobility ? 1.0 : 0.0)},
                 {"capillary", constant(p.capillary)},
                 {"one", constant(1.0)}};
+  bdf_c0_ = constant(1.0);
+  bdf_c1_ = constant(1.0);
+  bdf_c2_ = constant(0.0);
+  bdf_w_ = constant(0.0);
+  constants_.insert({{"bdf_c0", bdf_c0_}, {"bdf_c1", bdf_c1_}, {"bdf_c2", bdf_c2_}, {"bdf_w", bdf_w_}});
   const Inextensibility& in = p.inextensibility;
   if (in.enabled)
   {
@@ -68,10 +73,11 @@ std::int64_t FlowModule::num_dofs() const { return compat::num_global_dofs(*W_);
 
 void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const Function> phi,
                         std::shared_ptr<const Function> mu,
-                        std::shared_ptr<const Function> velocity, MembraneFields membrane)
+                        std::shared_ptr<const Function> velocity, MembraneFields membrane,
+                        PreviousFlowState previous)
 {
   for (const auto& f : {phi, mu, velocity, membrane.phi_cells, membrane.concentration,
-                        membrane.viscosity})
+                        membrane.viscosity, previous.velocity, previous.phi, previous.mu})
     if (f && f->function_space()->mesh() != mesh)
       throw std::invalid_argument("flow: phi, mu and the velocity must live on the flow's mesh"
                                   " (transfer them after a remesh)");
@@ -108,10 +114,39 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
   phi_ = phi;
   mu_ = mu;
   viscosity_ = membrane.viscosity;
+  // Second order: the forms read phi*, mu*; phi^{n-1}, mu^{n-1} are kept as given (moved
+  // from the last mesh, from a checkpoint) or start as phi^n, mu^n (no history yet).
+  phi_in_ = phi;
+  mu_in_ = mu;
+  phi_cells_in_ = nullptr;
+  phi_star_ = mu_star_ = phi_prev_ = mu_prev_ = velocity_prev_ = nullptr;
+  if (params_.second_order)
+  {
+    auto copy_or = [](std::shared_ptr<const Function> given, std::shared_ptr<const Function> f)
+    {
+      auto c = std::make_shared<Function>(std::const_pointer_cast<Space>(f->function_space()));
+      c->x()->set(0.0);
+      c->interpolate(given ? *given : *f);
+      return c;
+    };
+    phi_star_ = copy_or(nullptr, phi);
+    phi_prev_ = copy_or(previous.phi, phi);
+    phi_prev_->name = "flow_phi_prev";
+    phi_in_ = phi_star_;
+    if (params_.extrapolate_potential)
+    {
+      mu_star_ = copy_or(nullptr, mu);
+      mu_prev_ = copy_or(previous.mu, mu);
+      mu_prev_->name = "flow_potential_prev";
+      mu_in_ = mu_star_;
+    }
+  }
   if (inextensible)
   {
     Lambda_ = compat::collapse(*W_, {2});
     phi_cells_ = membrane.phi_cells ? membrane.phi_cells : phi;
+    // One cell: phi_cells is phi, extrapolated with it (several: phi_cells^n).
+    phi_cells_in_ = phi_cells_ == phi ? phi_in_ : phi_cells_;
     if (!membrane.concentration)
     {
       auto one = std::make_shared<Function>(compat::create_space(forms_.space, "phi", mesh));
@@ -128,6 +163,13 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
   velocity_->x()->set(0.0);
   if (velocity)
     velocity_->interpolate(*velocity); // same element and mesh: a copy in our dof order
+  if (params_.second_order)
+  {
+    velocity_prev_ = std::make_shared<Function>(Vv_.space);
+    velocity_prev_->name = "flow_v_prev";
+    velocity_prev_->x()->set(0.0);
+    velocity_prev_->interpolate(previous.velocity ? *previous.velocity : *velocity_);
+  }
   pressure_ = std::make_shared<Function>(Q_.space);
   pressure_->name = "p";
   pressure_->x()->set(0.0);
@@ -264,28 +306,44 @@ void FlowModule::build_bcs()
 
 void FlowModule::bind_forms()
 {
-  CoefficientMap coeffs{{"v0", velocity_},
-                        {"phi", phi_},
-                        {"mu", mu_},
+  // The system reads phi_in_, mu_in_ (phi*, mu* at second order); the observables the
+  // fields themselves.
+  CoefficientMap system{{"v0", velocity_},
+                        {"phi", phi_in_},
+                        {"mu", mu_in_},
                         {"f_membrane", membrane_force_},
                         {"p_h", pressure_}};
+  CoefficientMap observed = system;
+  observed["phi"] = phi_;
+  observed["mu"] = mu_;
+  if (velocity_prev_)
+    system["v1"] = velocity_prev_;
   if (viscosity_)
-    coeffs["eta_cells"] = viscosity_;
+    system["eta_cells"] = observed["eta_cells"] = viscosity_;
   if (multiplier_)
   {
-    coeffs["phi_cells"] = phi_cells_;
-    coeffs["conc"] = concentration_;
-    coeffs["lam_h"] = multiplier_;
+    system["phi_cells"] = phi_cells_in_;
+    observed["phi_cells"] = phi_cells_;
+    system["conc"] = observed["conc"] = concentration_;
+    system["lam_h"] = observed["lam_h"] = multiplier_;
   }
   // Stokes (Re = 0) skips the inertial terms instead of multiplying them by 0.
   const bool stokes = params_.Re == 0 && forms_.a_stokes;
   // With the cells' own viscosities the viscous term takes eta_cells (7.12).
   ufcx_form* a = viscosity_ ? (stokes ? forms_.a_stokes_cells : forms_.a_cells)
                             : (stokes ? forms_.a_stokes : forms_.a);
-  a_ = compat::create_form(*a, {W_, W_}, coeffs, constants_);
-  L_ = compat::create_form(*(stokes ? forms_.L_stokes : forms_.L), {W_}, coeffs, constants_);
+  a_ = compat::create_form(*a, {W_, W_}, system, constants_);
+  L_ = compat::create_form(*(stokes ? forms_.L_stokes : forms_.L), {W_}, system, constants_);
+  a_bdf2_ = L_bdf2_ = nullptr;
+  if (params_.second_order && !stokes)
+  {
+    if (!forms_.a_bdf2 || !forms_.L_bdf2 || viscosity_)
+      throw std::logic_error("flow: no second-order forms for this flow");
+    a_bdf2_ = compat::create_form(*forms_.a_bdf2, {W_, W_}, system, constants_);
+    L_bdf2_ = compat::create_form(*forms_.L_bdf2, {W_}, system, constants_);
+  }
   auto functional = [&](ufcx_form* f) -> std::shared_ptr<Form>
-  { return f ? compat::create_form(*f, {}, coeffs, constants_, mesh_) : nullptr; };
+  { return f ? compat::create_form(*f, {}, observed, constants_, mesh_) : nullptr; };
   kinetic_ = functional(forms_.kinetic_energy);
   divergence_ = functional(forms_.divergence_sq);
   phase_weight_ = functional(forms_.phase_weight);
@@ -320,14 +378,20 @@ bool FlowModule::local_matrix_outdated(double dt) const
   const bool variable_viscosity = p.viscosity[0] != p.viscosity[1];
   if (inertia && dt != factorised_dt_)
     return true;
-  if ((variable_viscosity || (inertia && variable_density)) && !same(factorised_phi_, *phi_))
+  // BDF2's c0 and v* depend on the step ratio and v^{n-1}
+  if (inertia && (second_order_step_ != factorised_second_order_
+                  || (second_order_step_ && bdf_w_->value[0] != factorised_w_)))
     return true;
-  if (transport && variable_density && p.mobility != 0 && !same(factorised_mu_, *mu_))
+  if ((variable_viscosity || (inertia && variable_density)) && !same(factorised_phi_, *phi_in_))
+    return true;
+  if (transport && variable_density && p.mobility != 0 && !same(factorised_mu_, *mu_in_))
     return true;
   // delta_phi P_phi and phi^2 of (3.67)-(3.68) move with the membrane
-  if (phi_cells_ && !same(factorised_phi_cells_, *phi_cells_))
+  if (phi_cells_in_ && !same(factorised_phi_cells_, *phi_cells_in_))
     return true;
   if (viscosity_ && !same(factorised_eta_, *viscosity_))
+    return true;
+  if (transport && second_order_step_ && !same(factorised_v_prev_, *velocity_prev_))
     return true;
   return transport && !same(factorised_v_, *velocity_);
 }
@@ -336,11 +400,15 @@ void FlowModule::remember_matrix_inputs(double dt)
 {
   factorised_ = true;
   factorised_dt_ = dt;
-  factorised_phi_ = copy_of(*phi_);
-  factorised_mu_ = copy_of(*mu_);
+  factorised_w_ = bdf_w_->value[0];
+  factorised_second_order_ = second_order_step_;
+  factorised_phi_ = copy_of(*phi_in_);
+  factorised_mu_ = copy_of(*mu_in_);
   factorised_v_ = copy_of(*velocity_);
-  if (phi_cells_)
-    factorised_phi_cells_ = copy_of(*phi_cells_);
+  if (velocity_prev_)
+    factorised_v_prev_ = copy_of(*velocity_prev_);
+  if (phi_cells_in_)
+    factorised_phi_cells_ = copy_of(*phi_cells_in_);
   if (viscosity_)
     factorised_eta_ = copy_of(*viscosity_);
 }
@@ -364,14 +432,19 @@ FlowTimings FlowModule::step(double dt)
   dt_->value[0] = dt;
   if (multiplier_)
     area_source_->value[0] = area_source(dt);
+  second_order_step_ = prepare_second_order(dt);
+  // Stokes has no d_t v: its forms serve both schemes
+  const bool bdf2_forms = second_order_step_ && a_bdf2_;
+  const auto& a = bdf2_forms ? a_bdf2_ : a_;
   t.factorised = matrix_outdated(dt);
   if (t.factorised)
   {
-    periodic_->assemble_matrix(A_->mat(), *a_, bcs_);
+    periodic_->assemble_matrix(A_->mat(), *a, bcs_);
     // The wall values do not change on a mesh, so neither does -A g while A stays.
-    periodic_->lifting(*lifting_, a_, bcs_);
+    periodic_->lifting(*lifting_, a, bcs_);
   }
-  periodic_->assemble_vector(*b_, *L_, *lifting_, bcs_);
+  periodic_->assemble_vector(*b_, bdf2_forms ? *L_bdf2_ : *L_, *lifting_, bcs_);
+  keep_previous(dt);
   t.assemble = seconds_since(t0);
   if (t.factorised)
   {
@@ -389,6 +462,50 @@ FlowTimings FlowModule::step(double dt)
   store_solution();
   t.solve = seconds_since(t1);
   return t;
+}
+
+bool FlowModule::prepare_second_order(double dt)
+{
+  if (!params_.second_order)
+    return false;
+  // Variable-step BDF2, w = dt_n / dt_{n-1} (forms/cellphase_ufl.py, bdf2_constants); the
+  // first step (no history) is backward Euler driven by phi^n, mu^n.
+  const bool bdf2 = history_.have;
+  const double w = bdf2 ? dt / history_.dt_prev : 0.0;
+  bdf_w_->value[0] = w;
+  bdf_c0_->value[0] = (1 + 2 * w) / (1 + w);
+  bdf_c1_->value[0] = 1 + w;
+  bdf_c2_->value[0] = w * w / (1 + w);
+  // phi* = (1 + w) phi^n - w phi^{n-1}, node by node (both on the phase field's space)
+  auto extrapolate = [w](const Function& now, const Function& before, Function& star)
+  {
+    auto n = now.x()->array();
+    auto b = before.x()->array();
+    auto s = star.x()->mutable_array();
+    for (std::size_t k = 0; k < s.size(); ++k)
+      s[k] = (1 + w) * n[k] - w * b[k];
+  };
+  extrapolate(*phi_, *phi_prev_, *phi_star_);
+  if (mu_star_)
+    extrapolate(*mu_, *mu_prev_, *mu_star_);
+  return bdf2;
+}
+
+void FlowModule::keep_previous(double dt)
+{
+  if (!params_.second_order)
+    return;
+  // After the assembly, before the solve overwrites v^n.
+  auto keep = [](const Function& now, Function& before)
+  {
+    auto n = now.x()->array();
+    std::copy(n.begin(), n.end(), before.x()->mutable_array().begin());
+  };
+  keep(*phi_, *phi_prev_);
+  if (mu_prev_)
+    keep(*mu_, *mu_prev_);
+  keep(*velocity_, *velocity_prev_);
+  history_ = {true, dt};
 }
 
 void FlowModule::store_solution()

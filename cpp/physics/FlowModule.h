@@ -77,7 +77,21 @@ struct FlowParameters
   std::optional<std::array<double, 3>> pressure_pin;
   std::map<std::string, std::string> petsc; ///< options under the prefix flow_
   bool reuse_factorisations = false;        ///< numerics.solver: reuse
+  /// numerics.time_scheme: bdf2. Each step is driven by the extrapolations phi*, mu* of the
+  /// phase field and its potential to t^{n+1} (Stokes and Navier-Stokes), and d_t v is
+  /// BDF2's with the transport velocity v* (Re > 0); the first step is backward Euler.
+  bool second_order = false;
+  /// Second order: mu is extrapolated too (scene::flow_extrapolates_potential), else the
+  /// step reads mu^n.
+  bool extrapolate_potential = true;
   Inextensibility inextensibility;
+};
+
+/// The flow's state one step back (FlowParameters::second_order), moved from the last
+/// mesh or read from a checkpoint: v^{n-1}, and the phi and mu that drove the last step.
+struct PreviousFlowState
+{
+  std::shared_ptr<const Function> velocity, phi, mu;
 };
 
 struct FlowTimings
@@ -120,7 +134,7 @@ public:
   void attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const Function> phi = nullptr,
               std::shared_ptr<const Function> mu = nullptr,
               std::shared_ptr<const Function> velocity = nullptr,
-              MembraneFields membrane = {});
+              MembraneFields membrane = {}, PreviousFlowState previous = {});
   /// Area target A0 of the global constraint (3.69), as the E_CH of (3.11) at the start.
   void set_area_target(double energy_ch) { area_target_ = energy_ch; }
   /// v^n -> v^{n+1}, p^{n+1}. The matrix is rebuilt and refactorised only if something it
@@ -135,6 +149,21 @@ public:
   /// Extra force density f_membrane (vector P2), zero unless a coupling writes into it.
   std::shared_ptr<Function> membrane_force() const { return membrane_force_; }
   FlowObservables observables() const;
+  /// Second order: whether the previous step's state is held (else the next step is
+  /// backward Euler driven by phi^n, as the first one), and that step's size.
+  struct History
+  {
+    bool have = false;
+    double dt_prev = 0;
+  };
+  History history() const { return history_; }
+  void set_history(const History& h) { history_ = h; }
+  /// Second order: v^{n-1}, phi and mu of the last step (null without; mu also without
+  /// FlowParameters::extrapolate_potential).
+  PreviousFlowState previous() const { return {velocity_prev_, phi_prev_, mu_prev_}; }
+  std::shared_ptr<Function> velocity_prev() const { return velocity_prev_; }
+  std::shared_ptr<Function> phi_prev() const { return phi_prev_; }
+  std::shared_ptr<Function> mu_prev() const { return mu_prev_; }
   /// Matrix factorisations since construction (all meshes).
   int factorisations() const { return factorisations_; }
   /// GMRES iterations since construction (numerics.solver: reuse; 0 with direct solves).
@@ -150,6 +179,11 @@ private:
   bool local_matrix_outdated(double dt) const;
   void remember_matrix_inputs(double dt);
   void store_solution();
+  /// Second order: phi*, mu* into the functions the forms read and the BDF2 constants;
+  /// returns whether this step is a BDF2 step.
+  bool prepare_second_order(double dt);
+  /// Second order: the state before this step becomes the next step's previous state.
+  void keep_previous(double dt);
   /// area_source of forms/flow_inextensible.py: the membrane-area rate that brings the
   /// area back to A0 in one step, per unit of int delta_phi (0 without global_area).
   double area_source(double dt) const;
@@ -164,13 +198,21 @@ private:
   std::shared_ptr<Space> W_;
   compat::CollapsedSpace Vv_, Q_, Lambda_;
   std::shared_ptr<const Function> phi_, mu_, phi_cells_, concentration_;
+  /// What the system's forms read for phi, mu and phi_cells: the fields themselves, or
+  /// (second order) their extrapolations phi*, mu* to t^{n+1}.
+  std::shared_ptr<Function> phi_star_, mu_star_;
+  std::shared_ptr<const Function> phi_in_, mu_in_, phi_cells_in_;
+  std::shared_ptr<Function> velocity_prev_, phi_prev_, mu_prev_;
+  std::shared_ptr<Constant> bdf_c0_, bdf_c1_, bdf_c2_, bdf_w_;
+  History history_;
+  bool second_order_step_ = false; ///< the current step is a BDF2 step
   std::shared_ptr<const Function> viscosity_; ///< eta_cells of (7.12), or null
   std::shared_ptr<Function> velocity_, pressure_, membrane_force_, multiplier_;
   std::vector<std::shared_ptr<Function>> bc_values_;
   BCs bcs_;
   bool pinned_ = false;
 
-  std::shared_ptr<Form> a_, L_;
+  std::shared_ptr<Form> a_, L_, a_bdf2_, L_bdf2_;
   std::shared_ptr<Form> kinetic_, divergence_, phase_weight_, pressure_integral_;
   std::vector<std::shared_ptr<Form>> phase_velocity_;
   std::shared_ptr<Form> membrane_delta_, energy_ch_, lambda_dissipation_, lambda_membrane_;
@@ -186,9 +228,10 @@ private:
   std::unique_ptr<LinearSolver> solver_;
   /// Inputs of the factorised matrix; a step compares them with the current ones.
   bool factorised_ = false;
-  double factorised_dt_ = 0;
+  double factorised_dt_ = 0, factorised_w_ = 0;
+  bool factorised_second_order_ = false;
   std::vector<T> factorised_phi_, factorised_mu_, factorised_v_, factorised_phi_cells_;
-  std::vector<T> factorised_eta_;
+  std::vector<T> factorised_eta_, factorised_v_prev_;
   int factorisations_ = 0, krylov_iterations_ = 0;
 };
 } // namespace cellphase

@@ -57,6 +57,13 @@ void FlowSubProblem::declare(FieldRegistry& fields)
   // output), lambda too.
   fields.declare({"flow.v", "v", name(), FieldSpace::vector_p2, Transfer::interpolate, true});
   fields.declare({"flow.p", "p", name(), FieldSpace::other, Transfer::recompute, true});
+  // Second order (numerics.time_scheme: bdf2): the state one step back, moved at a remesh
+  // like the fields it copies but never shaping the mesh.
+  for (const auto& f : scene::flow_history_fields(scene_))
+    fields.declare({f, f == "flow.v_prev" ? "flow_v_prev" : f == "flow.phi_prev" ? "flow_phi_prev"
+                                                                                 : "flow_potential_prev",
+                    name(), f == "flow.v_prev" ? FieldSpace::vector_p2 : FieldSpace::scalar_p2,
+                    Transfer::interpolate, true, "", f == "flow.phi_prev" ? -1.0 : 0.0, false, true});
   if (std::count(writes().begin(), writes().end(), "flow.lambda"))
     fields.declare({"flow.lambda", "lambda", name(), FieldSpace::other, Transfer::recompute,
                     false});
@@ -71,8 +78,18 @@ void FlowSubProblem::attach(FieldRegistry& fields)
   if (groups_.size() == 1)
   {
     auto phi = fields.get("cell.phi");
-    flow_.attach(phi->function_space()->mesh(), phi, fields.get("cell.potential"), v, membrane);
+    const PreviousFlowState previous{fields.find("flow.v_prev"), fields.find("flow.phi_prev"),
+                                     fields.find("flow.potential_prev")};
+    flow_.attach(phi->function_space()->mesh(), phi, fields.get("cell.potential"), v, membrane,
+                 previous);
     prepare_cell_force(phi);
+    if (flow_.velocity_prev())
+    {
+      fields.set("flow.v_prev", flow_.velocity_prev());
+      fields.set("flow.phi_prev", flow_.phi_prev());
+      if (flow_.mu_prev())
+        fields.set("flow.potential_prev", flow_.mu_prev());
+    }
   }
   else
   {
@@ -219,5 +236,19 @@ void FlowSubProblem::observe(Observation& row)
                                : v.total_energy;
   v.total_with_kinetic = v.kinetic_energy + interface;
   row.extra.push_back({"flow_dofs", double(flow_.num_dofs())}); // the rest of `dofs` is the cells'
+}
+
+void FlowSubProblem::save(CheckpointData& data) const
+{
+  const auto history = flow_.history();
+  data.set(name() + ".history.have", history.have ? 1 : 0);
+  data.set(name() + ".history.dt_prev", history.dt_prev);
+}
+
+void FlowSubProblem::restore(const CheckpointData& data)
+{
+  if (data.arrays.count(name() + ".history.have")) // older checkpoints have none
+    flow_.set_history({data.scalar(name() + ".history.have") != 0,
+                       data.scalar(name() + ".history.dt_prev")});
 }
 } // namespace cellphase

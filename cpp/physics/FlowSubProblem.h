@@ -24,6 +24,9 @@ public:
   void attach(FieldRegistry& fields) override;
   StepTimings step(double dt) override;
   void observe(Observation& row) override;
+  /// Second order: whether the previous state is held and its step (flow.history.*).
+  void save(CheckpointData& data) const override;
+  void restore(const CheckpointData& data) override;
   std::int64_t num_dofs() const override { return flow_.num_dofs(); }
   int factorisations() const override { return flow_.factorisations(); }
   int krylov_iterations() const override { return flow_.krylov_iterations(); }

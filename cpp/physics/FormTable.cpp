@@ -124,6 +124,8 @@ FlowForms flow_forms(int dim, bool inextensible)
   f.L_stokes = get("L_stokes");
   f.a_cells = get("a_cells");
   f.a_stokes_cells = get("a_stokes_cells");
+  f.a_bdf2 = get("a_bdf2");
+  f.L_bdf2 = get("L_bdf2");
   f.kinetic_energy = get("kinetic_energy");
   f.divergence_sq = get("divergence_sq");
   f.phase_weight = get("phase_weight");

@@ -73,6 +73,9 @@ struct FlowForms
   /// a and a_stokes with the viscosity eta_cells given at the nodes (several cells, 7.12)
   ufcx_form* a_cells = nullptr;
   ufcx_form* a_stokes_cells = nullptr;
+  /// numerics.time_scheme: bdf2 (Re > 0): BDF2's d_t v, transport velocity v*
+  ufcx_form* a_bdf2 = nullptr;
+  ufcx_form* L_bdf2 = nullptr;
   ufcx_form* kinetic_energy = nullptr;
   ufcx_form* divergence_sq = nullptr;
   ufcx_form* phase_weight = nullptr;

@@ -357,7 +357,12 @@ std::string check_report(const Scene& s)
                              : "")
                       + (s.numerics.time_scheme == Numerics::TimeScheme::bdf2
                              ? ", time scheme bdf2 (second order; the first step and the "
-                               "explicit sources backward Euler)"
+                               "explicit sources backward Euler"
+                                   + std::string(flow_history_fields(s).empty() ? ""
+                                                 : flow_extrapolates_potential(s)
+                                                     ? "; the flow driven by phi*, mu*"
+                                                     : "; the flow driven by phi*, dE/dphi^n")
+                                   + ")"
                              : ", time scheme euler (first order)"));
   r.line("phase field", "mobility " + fmt(pf.mobility) + ", H0 " + fmt(pf.spontaneous_curvature)
                             + ", penalties p1 " + fmt(pf.penalty_volume) + " p2 "

@@ -110,6 +110,8 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
       flow.reads.push_back("rd.force");
     if (s.polar_gel)
       flow.reads.push_back("polar.force");
+    for (const auto& f : flow_history_fields(s))
+      flow.writes.push_back(f);
     steps[flow.name] = flow;
   }
   if (s.reaction_diffusion)
@@ -199,6 +201,21 @@ bool own_meshes(const Scene& s) { return s.numerics.mesh.cell_meshes == Mesh::Ce
 std::string state_field(const Scene& s, const CellGroup& g, const std::string& field)
 {
   return g.prefix + (own_meshes(s) ? ".own." : ".") + field;
+}
+
+std::vector<std::string> flow_history_fields(const Scene& s)
+{
+  if (!s.flow || s.numerics.time_scheme != Numerics::TimeScheme::bdf2 || cell_groups(s).size() != 1)
+    return {};
+  if (!flow_extrapolates_potential(s))
+    return {"flow.v_prev", "flow.phi_prev"};
+  return {"flow.v_prev", "flow.phi_prev", "flow.potential_prev"};
+}
+
+bool flow_extrapolates_potential(const Scene& s)
+{
+  const Model m = s.phase_field.model;
+  return m != Model::helfrich_lagrange && m != Model::helfrich_penalty;
 }
 
 std::vector<CellGroup> cell_groups(const Scene& s)

@@ -46,6 +46,18 @@ Scene group_scene(const Scene& s, const CellGroup& g);
 bool own_meshes(const Scene& s);
 /// The field of the group's own state: <prefix>.<field>, or <prefix>.own.<field>.
 std::string state_field(const Scene& s, const CellGroup& g, const std::string& field);
+/// The flow's state one step back for its second-order step (numerics.time_scheme: bdf2
+/// with one cell group): v^{n-1} and the phase field and potential that drove that step
+/// (flow.v_prev, flow.phi_prev, flow.potential_prev); none otherwise, where the flow takes
+/// backward Euler steps driven by phi^n.
+std::vector<std::string> flow_history_fields(const Scene& s);
+/// Whether the second-order flow extrapolates the potential mu that drives it as it does
+/// phi: for the H^-1 flows (cahn_hilliard, helfrich_hm1), whose mu is a solved field. The
+/// L2 Helfrich flows' dE/dphi (3.84) is the rate -(d_t phi + v.grad phi)/gamma itself, an
+/// algebraic response to v with a gain of order 1/gamma: extrapolating it,
+/// (1 + w) dE^n - w dE^{n-1}, makes the explicit coupling unstable at every dt (seen:
+/// phi blows up after 13-25 steps at dt 1e-3 .. 2.5e-4), so the flow reads dE^n there.
+bool flow_extrapolates_potential(const Scene& s);
 
 /// Sub-problems the scene needs, in the thesis' order (section 5.3: the membrane union,
 /// then the flow with phi^n, the phase field with v^{n+1}, the reaction-diffusion with
