@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <csignal>
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -212,7 +213,10 @@ int run(const cellphase::scene::Scene& scene, bool restart)
 
 int main(int argc, char** argv)
 {
-  if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")
+  // --help anywhere (cellphase run --help, cellphase check SCENE -h) prints the usage.
+  auto asks_for_help = [](const char* a)
+  { return !std::strcmp(a, "--help") || !std::strcmp(a, "-h"); };
+  if (argc >= 2 && (std::any_of(argv + 1, argv + argc, asks_for_help)
                     || !std::strcmp(argv[1], "help")))
   {
     std::fputs(usage, stdout);

@@ -129,11 +129,14 @@ void FlowModule::attach(std::shared_ptr<const Mesh> mesh, std::shared_ptr<const 
       c->interpolate(given ? *given : *f);
       return c;
     };
-    phi_star_ = copy_or(nullptr, phi);
-    phi_prev_ = copy_or(previous.phi, phi);
-    phi_prev_->name = "flow_phi_prev";
-    phi_in_ = phi_star_;
-    if (params_.extrapolate_potential)
+    if (params_.extrapolate_phase)
+    {
+      phi_star_ = copy_or(nullptr, phi);
+      phi_prev_ = copy_or(previous.phi, phi);
+      phi_prev_->name = "flow_phi_prev";
+      phi_in_ = phi_star_;
+    }
+    if (params_.extrapolate_phase && params_.extrapolate_potential)
     {
       mu_star_ = copy_or(nullptr, mu);
       mu_prev_ = copy_or(previous.mu, mu);
@@ -485,7 +488,8 @@ bool FlowModule::prepare_second_order(double dt)
     for (std::size_t k = 0; k < s.size(); ++k)
       s[k] = (1 + w) * n[k] - w * b[k];
   };
-  extrapolate(*phi_, *phi_prev_, *phi_star_);
+  if (phi_star_)
+    extrapolate(*phi_, *phi_prev_, *phi_star_);
   if (mu_star_)
     extrapolate(*mu_, *mu_prev_, *mu_star_);
   return bdf2;
@@ -501,7 +505,8 @@ void FlowModule::keep_previous(double dt)
     auto n = now.x()->array();
     std::copy(n.begin(), n.end(), before.x()->mutable_array().begin());
   };
-  keep(*phi_, *phi_prev_);
+  if (phi_prev_)
+    keep(*phi_, *phi_prev_);
   if (mu_prev_)
     keep(*mu_, *mu_prev_);
   keep(*velocity_, *velocity_prev_);

@@ -81,8 +81,10 @@ struct FlowParameters
   /// phase field and its potential to t^{n+1} (Stokes and Navier-Stokes), and d_t v is
   /// BDF2's with the transport velocity v* (Re > 0); the first step is backward Euler.
   bool second_order = false;
-  /// Second order: mu is extrapolated too (scene::flow_extrapolates_potential), else the
-  /// step reads mu^n.
+  /// Second order: the step is driven by phi* (numerics.coupling: extrapolated), else by
+  /// phi^n (lagged: the split's first-order error stays); mu* too with
+  /// extrapolate_potential (scene::flow_extrapolates_potential), else mu^n.
+  bool extrapolate_phase = true;
   bool extrapolate_potential = true;
   Inextensibility inextensibility;
 };
@@ -158,8 +160,8 @@ public:
   };
   History history() const { return history_; }
   void set_history(const History& h) { history_ = h; }
-  /// Second order: v^{n-1}, phi and mu of the last step (null without; mu also without
-  /// FlowParameters::extrapolate_potential).
+  /// Second order: v^{n-1}, phi and mu of the last step (null without; phi and mu also
+  /// when not extrapolated, FlowParameters::extrapolate_phase, extrapolate_potential).
   PreviousFlowState previous() const { return {velocity_prev_, phi_prev_, mu_prev_}; }
   std::shared_ptr<Function> velocity_prev() const { return velocity_prev_; }
   std::shared_ptr<Function> phi_prev() const { return phi_prev_; }

@@ -86,7 +86,8 @@ void FlowSubProblem::attach(FieldRegistry& fields)
     if (flow_.velocity_prev())
     {
       fields.set("flow.v_prev", flow_.velocity_prev());
-      fields.set("flow.phi_prev", flow_.phi_prev());
+      if (flow_.phi_prev())
+        fields.set("flow.phi_prev", flow_.phi_prev());
       if (flow_.mu_prev())
         fields.set("flow.potential_prev", flow_.mu_prev());
     }

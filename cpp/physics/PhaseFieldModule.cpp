@@ -125,8 +125,12 @@ void PhaseFieldModule::attach(std::shared_ptr<Space> V, FieldMap fields)
     to_mixed_.push_back(compat::dofs_in_sub_space(*V_, *(names_.size() > 1 ? W_->sub({int(i)}) : W_)));
 
   u0_ = std::make_shared<Function>(W_);
-  u1_ = std::make_shared<Function>(W_);
-  u1_->x()->set(0.0); // slots of fields without history (w) stay zero
+  u1_ = nullptr;
+  if (bdf2_) // (an adaptive Euler step keeps phi_prev for its estimate only)
+  {
+    u1_ = std::make_shared<Function>(W_);
+    u1_->x()->set(0.0); // slots of fields without history (w) stay zero
+  }
   sources_.clear(); // built again on this mesh by set_interaction, set_orientation
   interaction_rhs_.clear();
   interaction_projection_.reset();
@@ -315,7 +319,8 @@ void PhaseFieldModule::bind_forms()
     const bool area_free = pf.model == Model::helfrich_lagrange && pf.surface_tension;
     // BDF2 steps: the curvature of the area load at the extrapolated state (u0, u1).
     CoefficientMap with_history = coeffs;
-    with_history["u1"] = u1_;
+    if (bdf2_)
+      with_history["u1"] = u1_;
     if (!area_free)
       loads_.push_back({UnitLoad::area,
                         compat::create_form(*forms_.load_a, {W_}, coeffs, constants_),
@@ -505,49 +510,33 @@ void PhaseFieldModule::apply_constraint_loads()
   }
 }
 
-void PhaseFieldModule::gather_state()
+void PhaseFieldModule::to_mixed(const std::vector<std::string>& names, std::span<T> mixed) const
 {
-  auto u = u0_->x()->mutable_array();
-  for (std::size_t i = 0; i < names_.size(); ++i)
+  for (std::size_t i = 0; i < names.size(); ++i)
   {
-    auto f = fields_.at(names_[i])->x()->array();
+    auto f = fields_.at(names[i])->x()->array();
     for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
-      u[to_mixed_[i][d]] = f[d];
+      mixed[to_mixed_[i][d]] = f[d];
   }
 }
 
-void PhaseFieldModule::scatter_state()
+void PhaseFieldModule::from_mixed(std::span<const T> mixed, const std::vector<std::string>& names)
 {
-  auto x = x_->array();
-  for (std::size_t i = 0; i < names_.size(); ++i)
+  for (std::size_t i = 0; i < names.size(); ++i)
   {
-    auto f = fields_.at(names_[i])->x()->mutable_array();
+    auto f = fields_.at(names[i])->x()->mutable_array();
     for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
-      f[d] = x[to_mixed_[i][d]];
+      f[d] = mixed[to_mixed_[i][d]];
   }
 }
 
-void PhaseFieldModule::gather_history()
-{
-  auto u = u1_->x()->mutable_array();
-  for (std::size_t i = 0; i < history_names_.size(); ++i)
-  {
-    auto f = fields_.at(history_names_[i])->x()->array();
-    for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
-      u[to_mixed_[i][d]] = f[d];
-  }
-}
+void PhaseFieldModule::gather_state() { to_mixed(names_, u0_->x()->mutable_array()); }
 
-void PhaseFieldModule::keep_history()
-{
-  auto u = u0_->x()->array();
-  for (std::size_t i = 0; i < history_names_.size(); ++i)
-  {
-    auto f = fields_.at(history_names_[i])->x()->mutable_array();
-    for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
-      f[d] = u[to_mixed_[i][d]];
-  }
-}
+void PhaseFieldModule::scatter_state() { from_mixed(x_->array(), names_); }
+
+void PhaseFieldModule::gather_history() { to_mixed(history_names_, u1_->x()->mutable_array()); }
+
+void PhaseFieldModule::keep_history() { from_mixed(u0_->x()->array(), history_names_); }
 
 void PhaseFieldModule::estimate_time_error(double dt)
 {

@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <span>
 #include <vector>
 
 namespace cellphase
@@ -123,6 +124,10 @@ private:
   /// BDF2's coefficients for this step (variable step ratio w = dt / dt_prev).
   void set_bdf2_coefficients(double dt);
   void scatter_state();  ///< mixed solution -> standalone fields
+  /// The standalone fields `names` (the i-th in the i-th slot of the mixed space) into a
+  /// mixed vector, and back.
+  void to_mixed(const std::vector<std::string>& names, std::span<T> mixed) const;
+  void from_mixed(std::span<const T> mixed, const std::vector<std::string>& names);
   double integral(const std::shared_ptr<Form>& f) const;
 
   const scene::Scene& scene_;

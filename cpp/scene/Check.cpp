@@ -359,6 +359,8 @@ std::string check_report(const Scene& s)
                              ? ", time scheme bdf2 (second order; the first step and the "
                                "explicit sources backward Euler"
                                    + std::string(flow_history_fields(s).empty() ? ""
+                                                 : s.numerics.coupling == Numerics::Coupling::lagged
+                                                     ? "; the flow driven by phi^n, mu^n (lagged)"
                                                  : flow_extrapolates_potential(s)
                                                      ? "; the flow driven by phi*, mu*"
                                                      : "; the flow driven by phi*, dE/dphi^n")

@@ -207,6 +207,8 @@ std::vector<std::string> flow_history_fields(const Scene& s)
 {
   if (!s.flow || s.numerics.time_scheme != Numerics::TimeScheme::bdf2 || cell_groups(s).size() != 1)
     return {};
+  if (s.numerics.coupling == Numerics::Coupling::lagged)
+    return {"flow.v_prev"};
   if (!flow_extrapolates_potential(s))
     return {"flow.v_prev", "flow.phi_prev"};
   return {"flow.v_prev", "flow.phi_prev", "flow.potential_prev"};

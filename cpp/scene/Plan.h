@@ -47,9 +47,9 @@ bool own_meshes(const Scene& s);
 /// The field of the group's own state: <prefix>.<field>, or <prefix>.own.<field>.
 std::string state_field(const Scene& s, const CellGroup& g, const std::string& field);
 /// The flow's state one step back for its second-order step (numerics.time_scheme: bdf2
-/// with one cell group): v^{n-1} and the phase field and potential that drove that step
-/// (flow.v_prev, flow.phi_prev, flow.potential_prev); none otherwise, where the flow takes
-/// backward Euler steps driven by phi^n.
+/// with one cell group): v^{n-1} and (numerics.coupling: extrapolated) the phase field and
+/// potential that drove that step (flow.v_prev, flow.phi_prev, flow.potential_prev); none
+/// otherwise, where the flow takes backward Euler steps driven by phi^n.
 std::vector<std::string> flow_history_fields(const Scene& s);
 /// Whether the second-order flow extrapolates the potential mu that drives it as it does
 /// phi: for the H^-1 flows (cahn_hilliard, helfrich_hm1), whose mu is a solved field. The

@@ -101,6 +101,14 @@ void read_limits(const Section& l, Model model, Limits& limits)
 }
 } // namespace
 
+void check_coupling(const Section& top, const Scene& s)
+{
+  const Section n = top.section("numerics");
+  if (n.has("coupling") && (!s.flow || s.numerics.time_scheme != Numerics::TimeScheme::bdf2))
+    n.fail("coupling", "chooses what drives a BDF2 flow step: it needs a flow and "
+                       "numerics.time_scheme: bdf2 (backward Euler drives the flow by phi^n)");
+}
+
 void check_adaptive_dt(const Section& top, const Scene& s)
 {
   if (!s.numerics.adaptive_dt)
@@ -123,7 +131,8 @@ void read_numerics(const Section& top, Scene& s)
                          "numerics.end_time");
   const Section n = top.section("numerics");
   n.allow_only({"epsilon", "dt", "end_time", "linearisation", "stabilisation", "mesh", "limits",
-                "petsc", "split", "solver", "stop_when_settled", "time_scheme", "adaptive_dt"});
+                "petsc", "split", "solver", "stop_when_settled", "time_scheme", "adaptive_dt",
+                "coupling"});
   Numerics& num = s.numerics;
   num.epsilon = n.number("epsilon", positive());
   num.dt = n.number("dt", positive());
@@ -172,6 +181,9 @@ void read_numerics(const Section& top, Scene& s)
                              {{"euler", Numerics::TimeScheme::euler},
                               {"bdf2", Numerics::TimeScheme::bdf2}});
   num.adaptive_dt = read_adaptive_dt(n, num);
+  num.coupling = n.choice("coupling", num.coupling,
+                          {{"extrapolated", Numerics::Coupling::extrapolated},
+                           {"lagged", Numerics::Coupling::lagged}});
   if (num.time_scheme == Numerics::TimeScheme::bdf2)
   {
     // BDF2 needs the Taylor linearisation about its extrapolation; the stabilised scheme's

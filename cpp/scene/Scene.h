@@ -211,6 +211,9 @@ struct Numerics
   /// Time discretisation of the phase field: backward Euler (the thesis', first order) or
   /// the variable-step BDF2 (second order, forms/cellphase_ufl.py bdf2_constants).
   enum class TimeScheme { euler, bdf2 } time_scheme = TimeScheme::euler;
+  /// What drives a BDF2 flow step: phi*, mu* extrapolated to t^{n+1} (second-order split)
+  /// or phi^n, mu^n (lagged: the split's first-order error; backward Euler's coupling).
+  enum class Coupling { extrapolated, lagged } coupling = Coupling::extrapolated;
   std::optional<SettledStop> stop_when_settled;
   /// Adaptive time step (numerics.adaptive_dt, app/StepSizeControl): absent, every step is dt.
   std::optional<AdaptiveDt> adaptive_dt;

@@ -14,6 +14,8 @@ void read_numbers(const yaml::Section& top, Scene& s);      ///< numbers or unit
 void read_numerics(const yaml::Section& top, Scene& s);     ///< numerics
 /// numerics.adaptive_dt against the sub-problems of the scene (after all sections are read)
 void check_adaptive_dt(const yaml::Section& top, const Scene& s);
+/// numerics.coupling needs a flow and time_scheme: bdf2 (after all sections are read)
+void check_coupling(const yaml::Section& top, const Scene& s);
 void read_cells(const yaml::Section& top, Scene& s);        ///< cells (shapes only)
 void read_flow(const yaml::Section& top, Scene& s);         ///< flow (optional)
 void read_interaction(const yaml::Section& top, Scene& s);  ///< interaction (after cells)

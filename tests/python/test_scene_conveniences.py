@@ -132,3 +132,14 @@ def test_check_counts_the_outputs_the_run_writes(tmp_path, steps, every, expecte
         sys.path.insert(0, str(__import__("pathlib").Path(__file__).parents[2] / "python"))
         from cellphase_results import read_fields
         assert len(list(read_fields(tmp_path / "out"))) == expected
+
+
+@pytest.mark.parametrize("args", [["--help"], ["-h"], ["help"], ["run", "--help"],
+                                  ["check", "scene.yaml", "-h"]])
+def test_help_answers_wherever_it_is_asked(args):
+    """--help (or -h) anywhere on the command line prints the usage and exits 0, before
+    any scene is read."""
+    require_exe()
+    proc = subprocess.run([EXE, *args], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    assert "Usage:" in proc.stdout and "docs/scenes.md" in proc.stdout
