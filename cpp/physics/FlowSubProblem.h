@@ -2,6 +2,7 @@
 // field, reading phi, the interface potential dE/dphi and, with inextensibility, the
 // membrane union and concentration from the registry.
 #pragma once
+#include "core/SolverColumns.h"
 #include "core/SubProblem.h"
 #include "physics/FlowModule.h"
 #include "scene/Plan.h"
@@ -32,6 +33,7 @@ public:
   int krylov_iterations() const override { return flow_.krylov_iterations(); }
 
 private:
+  SolverColumns solver_columns_{"flow"}; ///< numerics.solver: reuse
   /// Several cells: f_membrane <- L2 projection of sum_i capillary mu_i grad phi_i (7.12).
   double project_interface_force();
   /// flow.cell_force: F(x) at the velocity nodes and the phase-field dof at each node.

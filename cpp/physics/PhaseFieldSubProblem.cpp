@@ -24,7 +24,8 @@ std::string format(const char* fmt, Args... args)
 
 PhaseFieldSubProblem::PhaseFieldSubProblem(scene::PlanStep step, const scene::Scene& scene,
                                            MPI_Comm comm, scene::CellGroup group, int groups)
-    : SubProblem(std::move(step)), group_(std::move(group)), groups_(groups),
+    : SubProblem(std::move(step)), group_(std::move(group)),
+      solver_columns_(groups > 1 ? group_.name + ".phase_field" : "phase_field"), groups_(groups),
       scene_(scene::group_scene(scene, group_)), module_(scene_, comm),
       own_(scene::own_meshes(scene_))
 {
@@ -320,6 +321,8 @@ void PhaseFieldSubProblem::observe(Observation& row)
     for (const auto& [name, value] : limits)
       row.extra.push_back({g + name, value});
   }
+  if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
+    solver_columns_.add(row, module_.factorisations(), module_.krylov_iterations());
 }
 
 std::string PhaseFieldSubProblem::patch_problem() const

@@ -4,6 +4,7 @@
 // mass continued across periodic faces, both checkpointed.
 #pragma once
 #include "compat/Resample.h"
+#include "core/SolverColumns.h"
 #include "core/SubProblem.h"
 #include "physics/Observables.h"
 #include "physics/PhaseFieldModule.h"
@@ -50,6 +51,7 @@ private:
   void unwrap_centre(std::array<double, 3>& centre);
 
   scene::CellGroup group_;
+  SolverColumns solver_columns_; ///< numerics.solver: reuse
   int groups_;              ///< phase fields of the scene
   const scene::Scene scene_; ///< as this group sees it (its cells, its parameters)
   PhaseFieldModule module_;

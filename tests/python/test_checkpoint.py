@@ -23,7 +23,10 @@ import cellphase_results  # noqa: E402
 
 # Wall times and the round-off of the remesh volume correction are not part of the state.
 NOT_STATE = {"wall_assembly", "wall_factorise", "wall_solve", "wall_remesh", "wall_output",
-             "remesh_volume_change", "wall_flow", "wall_rd", "wall_polar"}
+             "remesh_volume_change", "wall_flow", "wall_rd", "wall_polar",
+             # numerics.solver: reuse counts (a restart starts with a new factorisation)
+             "phase_field_factorisations", "phase_field_krylov_iterations",
+             "flow_factorisations", "flow_krylov_iterations"}
 STEPS = 40
 
 
