@@ -51,11 +51,7 @@ FlowModule::FlowModule(const FlowParameters& parameters, MPI_Comm comm, FlowForm
                 {"degenerate", constant(p.degenerate_mobility ? 1.0 : 0.0)},
                 {"capillary", constant(p.capillary)},
                 {"one", constant(1.0)}};
-  bdf_c0_ = constant(1.0);
-  bdf_c1_ = constant(1.0);
-  bdf_c2_ = constant(0.0);
-  bdf_w_ = constant(0.0);
-  constants_.insert({{"bdf_c0", bdf_c0_}, {"bdf_c1", bdf_c1_}, {"bdf_c2", bdf_c2_}, {"bdf_w", bdf_w_}});
+  bdf_.add_to(constants_);
   const Inextensibility& in = p.inextensibility;
   if (in.enabled)
   {
@@ -383,7 +379,7 @@ bool FlowModule::local_matrix_outdated(double dt) const
     return true;
   // BDF2's c0 and v* depend on the step ratio and v^{n-1}
   if (inertia && (second_order_step_ != factorised_second_order_
-                  || (second_order_step_ && bdf_w_->value[0] != factorised_w_)))
+                  || (second_order_step_ && bdf_.w() != factorised_w_)))
     return true;
   if ((variable_viscosity || (inertia && variable_density)) && !same(factorised_phi_, *phi_in_))
     return true;
@@ -403,7 +399,7 @@ void FlowModule::remember_matrix_inputs(double dt)
 {
   factorised_ = true;
   factorised_dt_ = dt;
-  factorised_w_ = bdf_w_->value[0];
+  factorised_w_ = bdf_.w();
   factorised_second_order_ = second_order_step_;
   factorised_phi_ = copy_of(*phi_in_);
   factorised_mu_ = copy_of(*mu_in_);
@@ -475,23 +471,12 @@ bool FlowModule::prepare_second_order(double dt)
   // first step (no history) is backward Euler driven by phi^n, mu^n.
   const bool bdf2 = history_.have;
   const double w = bdf2 ? dt / history_.dt_prev : 0.0;
-  bdf_w_->value[0] = w;
-  bdf_c0_->value[0] = (1 + 2 * w) / (1 + w);
-  bdf_c1_->value[0] = 1 + w;
-  bdf_c2_->value[0] = w * w / (1 + w);
-  // phi* = (1 + w) phi^n - w phi^{n-1}, node by node (both on the phase field's space)
-  auto extrapolate = [w](const Function& now, const Function& before, Function& star)
-  {
-    auto n = now.x()->array();
-    auto b = before.x()->array();
-    auto s = star.x()->mutable_array();
-    for (std::size_t k = 0; k < s.size(); ++k)
-      s[k] = (1 + w) * n[k] - w * b[k];
-  };
+  bdf_.set(w);
+  // phi*, mu* node by node (phi and mu share the phase field's space)
   if (phi_star_)
-    extrapolate(*phi_, *phi_prev_, *phi_star_);
+    extrapolate(phi_->x()->array(), phi_prev_->x()->array(), w, phi_star_->x()->mutable_array());
   if (mu_star_)
-    extrapolate(*mu_, *mu_prev_, *mu_star_);
+    extrapolate(mu_->x()->array(), mu_prev_->x()->array(), w, mu_star_->x()->mutable_array());
   return bdf2;
 }
 

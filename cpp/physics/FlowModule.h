@@ -3,6 +3,7 @@
 // P2/P1 Taylor-Hood space, for a given phase field phi and chemical potential mu.
 #pragma once
 #include "compat/Dolfinx.h"
+#include "core/Bdf2.h"
 #include "physics/FormTable.h"
 #include "compat/Periodic.h"
 #include "solve/LinearSolver.h"
@@ -153,11 +154,7 @@ public:
   FlowObservables observables() const;
   /// Second order: whether the previous step's state is held (else the next step is
   /// backward Euler driven by phi^n, as the first one), and that step's size.
-  struct History
-  {
-    bool have = false;
-    double dt_prev = 0;
-  };
+  using History = StepHistory;
   History history() const { return history_; }
   void set_history(const History& h) { history_ = h; }
   /// Second order: v^{n-1}, phi and mu of the last step (null without; phi and mu also
@@ -205,7 +202,7 @@ private:
   std::shared_ptr<Function> phi_star_, mu_star_;
   std::shared_ptr<const Function> phi_in_, mu_in_, phi_cells_in_;
   std::shared_ptr<Function> velocity_prev_, phi_prev_, mu_prev_;
-  std::shared_ptr<Constant> bdf_c0_, bdf_c1_, bdf_c2_, bdf_w_;
+  Bdf2Constants bdf_;
   History history_;
   bool second_order_step_ = false; ///< the current step is a BDF2 step
   std::shared_ptr<const Function> viscosity_; ///< eta_cells of (7.12), or null

@@ -65,15 +65,7 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
   dt_ = constant(nu.dt);
   lam_v_ = constant(0.0);
   lam_a_ = constant(0.0);
-  bdf_c0_ = constant(1.0);
-  bdf_c1_ = constant(1.0);
-  bdf_c2_ = constant(0.0);
-  bdf_w_ = constant(0.0);
   constants_ = {{"dt", dt_},
-                {"bdf_c0", bdf_c0_},
-                {"bdf_c1", bdf_c1_},
-                {"bdf_c2", bdf_c2_},
-                {"bdf_w", bdf_w_},
                 {"eps", constant(nu.epsilon)},
                 {"gamma", constant(pf.mobility)},
                 {"Be", constant(scene.numbers.Be)},
@@ -91,6 +83,7 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
                 {"cos_theta", constant(scene.contact_angle_deg
                                            ? std::cos(*scene.contact_angle_deg * std::numbers::pi / 180)
                                            : 0.0)}};
+  bdf_.add_to(constants_);
 }
 
 std::int64_t PhaseFieldModule::num_dofs() const { return compat::num_global_dofs(*W_); }
@@ -553,8 +546,7 @@ void PhaseFieldModule::estimate_time_error(double dt)
   double largest = 0;
   for (std::int32_t d = 0; d < owned; ++d)
   {
-    const double extrapolated = (1 + w) * u[to_mixed_[0][d]] - w * before[d];
-    largest = std::max(largest, std::abs(now[d] - extrapolated));
+    largest = std::max(largest, std::abs(now[d] - extrapolate(u[to_mixed_[0][d]], before[d], w)));
   }
   MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
   time_error_ = largest * dt / (dt + history_.dt_prev);
@@ -562,12 +554,7 @@ void PhaseFieldModule::estimate_time_error(double dt)
 
 void PhaseFieldModule::set_bdf2_coefficients(double dt)
 {
-  // Variable-step BDF2 (forms/cellphase_ufl.py, bdf2_constants), w = dt_n / dt_{n-1}
-  const double w = dt / history_.dt_prev;
-  bdf_c0_->value[0] = (1 + 2 * w) / (1 + w);
-  bdf_c1_->value[0] = 1 + w;
-  bdf_c2_->value[0] = w * w / (1 + w);
-  bdf_w_->value[0] = w;
+  bdf_.set(dt / history_.dt_prev);
 }
 
 StepTimings PhaseFieldModule::step(double dt)

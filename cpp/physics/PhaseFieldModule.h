@@ -2,6 +2,7 @@
 // scene's model (section 2.5 and 3.4.1), solved as one monolithic P2 system per step.
 #pragma once
 #include "compat/Dolfinx.h"
+#include "core/Bdf2.h"
 #include "core/StepTimings.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
@@ -87,11 +88,7 @@ public:
   int krylov_iterations() const { return krylov_iterations_; }
   /// numerics.time_scheme: bdf2. The previous state is in fields() as phi_prev (and
   /// mu_prev); with `have` false the next step is a backward Euler step (the first one).
-  struct History
-  {
-    bool have = false;
-    double dt_prev = 0; ///< the step that led to the present state
-  };
+  using History = StepHistory;
   History history() const { return history_; }
   /// The local time error of the last step as backward Euler's, estimated from the
   /// extrapolation phi* of phi^n and phi^{n-1}: max over the nodes of
@@ -148,7 +145,7 @@ private:
   std::vector<std::string> history_names_;          ///< "phi_prev"(, "mu_prev"): names_[i] + "_prev"
   std::shared_ptr<Function> u1_;                    ///< state at t^{n-1} on W
   std::shared_ptr<Form> a_bdf2_, L_bdf2_;
-  std::shared_ptr<Constant> bdf_c0_, bdf_c1_, bdf_c2_, bdf_w_;
+  Bdf2Constants bdf_;
   History history_;
   bool second_order_step_ = false;                  ///< this step is a BDF2 step
   double time_error_ = -1;                          ///< of the last step, see time_error()
