@@ -470,6 +470,8 @@ double Simulation::remesh(double& volume_change)
                                             : std::optional(own_meshes_.at(key).patch_box()));
 
   std::map<std::string, std::shared_ptr<Function>> moved;
+  // The fields of one space on the shared mesh share their interpolation points.
+  std::map<std::pair<const Mesh*, const Space*>, compat::MeshTransfer> shared_transfers;
   volume_change = 0;
   for (const auto& name : fields_.names())
   {
@@ -479,7 +481,14 @@ double Simulation::remesh(double& volume_change)
     auto f = std::make_shared<Function>(fields_.space(info.mesh, info.space));
     f->name = info.label;
     if (info.mesh.empty())
-      compat::transfer(old.at(name), *f);
+    {
+      auto from_mesh = old.at(name)->function_space()->mesh();
+      auto key = std::pair(from_mesh.get(), f->function_space().get());
+      auto it = shared_transfers.find(key);
+      if (it == shared_transfers.end())
+        it = shared_transfers.emplace(key, compat::MeshTransfer(from_mesh, f->function_space())).first;
+      it->second.apply(*old.at(name), *f);
+    }
     else
       compat::Resampler(old.at(name), f, {}, info.outside).apply(); // its value beyond the old patch
     if (info.transfer == Transfer::keep_integral)

@@ -248,36 +248,45 @@ PointEvaluator make_evaluator(std::shared_ptr<const Function> u)
 
 void transfer(std::shared_ptr<const Function> from, Function& to)
 {
-  auto V = to.function_space();
-  // Scalar or vector (blocked) fields: vs values per point.
-  const int vs = V->element()->value_size();
-  if (from->function_space()->element()->value_size() != vs)
-    throw std::invalid_argument("transfer: the fields differ in value size");
-  auto cells = all_local_cells(*V->mesh());
+  MeshTransfer(from->function_space()->mesh(), to.function_space()).apply(*from, to);
+}
+
+MeshTransfer::MeshTransfer(std::shared_ptr<const Mesh> from_mesh,
+                           std::shared_ptr<const Space> to_space)
+    : from_mesh_(from_mesh), to_space_(to_space), cells_(all_local_cells(*to_space->mesh()))
+{
   // interpolation_coords returns 3 rows (x, y, z) of N points; eval wants N rows of 3.
-  const std::vector<double> X = fem::interpolation_coords(*V->element(), *V->mesh(), cells);
+  const std::vector<double> X
+      = fem::interpolation_coords(*to_space->element(), *to_space->mesh(), cells_);
   const std::size_t n = X.size() / 3;
-  std::vector<double> pts(3 * n);
+  points_.resize(3 * n);
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d)
-      pts[3 * i + d] = X[d * n + i];
+      points_[3 * i + d] = X[d * n + i];
+  from_cells_ = PointLocator(from_mesh).locate(points_);
+}
+
+void MeshTransfer::apply(const Function& from, Function& to) const
+{
+  if (from.function_space()->mesh() != from_mesh_ || to.function_space() != to_space_)
+    throw std::invalid_argument("MeshTransfer: the fields are not on its mesh and space");
+  // Scalar or vector (blocked) fields: vs values per point.
+  const std::size_t vs = to_space_->element()->value_size();
+  if (std::size_t(from.function_space()->element()->value_size()) != vs)
+    throw std::invalid_argument("transfer: the fields differ in value size");
+  const std::size_t n = points_.size() / 3;
+  std::vector<double> values(n * vs); // N rows of vs
+  from.eval(points_, {n, 3}, from_cells_, values, {n, vs});
   if (vs == 1)
   {
-    std::vector<double> values(n);
-    make_evaluator(from)(pts, values);
-    fem::interpolate(to, std::span<const T>(values), {1, n}, std::span<const std::int32_t>(cells));
+    fem::interpolate(to, std::span<const T>(values), {1, n}, std::span<const std::int32_t>(cells_));
     return;
   }
-  PointLocator locator(from->function_space()->mesh());
-  auto from_cells = locator.locate(pts);
-  std::vector<double> values(n * vs); // N rows of vs
-  from->eval(pts, {n, 3}, from_cells, values, {n, std::size_t(vs)});
-  std::vector<double> rows(n * vs);   // vs rows of N, as interpolate wants
+  std::vector<double> rows(n * vs); // vs rows of N, as interpolate wants
   for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < vs; ++c)
+    for (std::size_t c = 0; c < vs; ++c)
       rows[c * n + i] = values[i * vs + c];
-  fem::interpolate(to, std::span<const T>(rows), {std::size_t(vs), n},
-                   std::span<const std::int32_t>(cells));
+  fem::interpolate(to, std::span<const T>(rows), {vs, n}, std::span<const std::int32_t>(cells_));
 }
 
 std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, const Space& V)

@@ -86,6 +86,22 @@ PointEvaluator make_evaluator(std::shared_ptr<const Function> u);
 /// scalar or vector fields (same value size).
 void transfer(std::shared_ptr<const Function> from, Function& to);
 
+/// The same for many fields from one mesh to one space (a remesh moves every field of a
+/// space at once): the interpolation points are computed and located in the old mesh once.
+class MeshTransfer
+{
+public:
+  MeshTransfer(std::shared_ptr<const Mesh> from_mesh, std::shared_ptr<const Space> to_space);
+  /// to <- from; from lives on from_mesh, to in to_space.
+  void apply(const Function& from, Function& to) const;
+
+private:
+  std::shared_ptr<const Mesh> from_mesh_;
+  std::shared_ptr<const Space> to_space_;
+  std::vector<std::int32_t> cells_, from_cells_;
+  std::vector<double> points_; ///< N rows of 3
+};
+
 /// Dofs of sub-space `sub` of the mixed space W on the domain boundary, as the pair
 /// (dofs in W, dofs in the collapsed sub-space V).
 std::array<std::vector<std::int32_t>, 2> boundary_dofs(const Space& W, int sub, const Space& V);
