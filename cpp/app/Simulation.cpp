@@ -470,8 +470,9 @@ double Simulation::remesh(double& volume_change)
                                             : std::optional(own_meshes_.at(key).patch_box()));
 
   std::map<std::string, std::shared_ptr<Function>> moved;
-  // The fields of one space on the shared mesh share their interpolation points.
+  // The fields of one space share their interpolation points, located in the old mesh once.
   std::map<std::pair<const Mesh*, const Space*>, compat::MeshTransfer> shared_transfers;
+  std::map<std::pair<const Mesh*, const Space*>, compat::Resampler> patch_transfers;
   volume_change = 0;
   for (const auto& name : fields_.names())
   {
@@ -489,8 +490,14 @@ double Simulation::remesh(double& volume_change)
         it = shared_transfers.emplace(key, compat::MeshTransfer(from_mesh, f->function_space())).first;
       it->second.apply(*old.at(name), *f);
     }
-    else
-      compat::Resampler(old.at(name), f, {}, info.outside).apply(); // its value beyond the old patch
+    else // a cell's own patch: info.outside beyond the old patch
+    {
+      auto key = std::pair(old.at(name)->function_space()->mesh().get(), f->function_space().get());
+      auto it = patch_transfers.find(key);
+      if (it == patch_transfers.end())
+        it = patch_transfers.emplace(key, compat::Resampler(old.at(name), f, {}, info.outside)).first;
+      it->second.apply(*old.at(name), *f, info.outside);
+    }
     if (info.transfer == Transfer::keep_integral)
     {
       TransferReport report;

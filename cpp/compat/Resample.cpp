@@ -57,20 +57,25 @@ Resampler::Resampler(std::shared_ptr<const Function> from, std::shared_ptr<Funct
   from_cells_ = locator_of(from->function_space()->mesh())->locate(points_, true);
 }
 
-void Resampler::apply()
+void Resampler::apply() { apply(*from_, *to_, outside_); }
+
+void Resampler::apply(const Function& from, Function& to, double outside) const
 {
+  if (from.function_space()->mesh() != from_->function_space()->mesh()
+      || to.function_space() != to_->function_space())
+    throw std::invalid_argument("Resampler: the fields are not on its meshes and spaces");
   const std::size_t n = points_.size() / 3, vs = value_size_;
-  std::vector<double> values(n * vs, outside_); // N rows of vs
-  from_->eval(points_, {n, 3}, from_cells_, values, {n, vs});
+  std::vector<double> values(n * vs, outside); // N rows of vs
+  from.eval(points_, {n, 3}, from_cells_, values, {n, vs});
   for (std::size_t i = 0; i < n; ++i)
     if (from_cells_[i] < 0)
       for (std::size_t c = 0; c < vs; ++c)
-        values[i * vs + c] = outside_;
+        values[i * vs + c] = outside;
   std::vector<double> rows(n * vs); // vs rows of N, as interpolate wants
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t c = 0; c < vs; ++c)
       rows[c * n + i] = values[i * vs + c];
-  fem::interpolate(*to_, std::span<const T>(rows), {vs, n}, std::span<const std::int32_t>(cells_));
+  fem::interpolate(to, std::span<const T>(rows), {vs, n}, std::span<const std::int32_t>(cells_));
 }
 
 std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const Mesh> patch)

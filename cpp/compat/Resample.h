@@ -25,6 +25,8 @@ public:
   Resampler(std::shared_ptr<const Function> from, std::shared_ptr<Function> to,
             std::vector<std::int32_t> cells, double outside);
   void apply();
+  /// The same points for another pair of fields on the same meshes and spaces.
+  void apply(const Function& from, Function& to, double outside) const;
 
 private:
   std::shared_ptr<const Function> from_;
