@@ -12,8 +12,9 @@ Usage: /usr/bin/python3 benchmarks/polar_squirmer.py [--study STUDY.yaml] [--rep
 Writes benchmarks/results/polar-squirmer.csv with the columns
   inv_fa,v_cell,n1,m,A_st,A_str,A_sd,v_cell_fit,t_end,settled
 (v_cell: the phi~-weighted mean x velocity of the final state; v_cell_fit: the far field's
-uniform part), polar-squirmer.md (beside the thesis' Table 6.3 and its fitted n1, m) and
-polar-squirmer.png (the profiles and their fits, as Fig. 6.14).
+uniform part), polar-squirmer.md (beside the thesis' Table 6.3 and its fitted n1, m),
+polar-squirmer.png (the profiles and their fits, as Fig. 6.14) and polar-squirmer-shapes.png
+(the stationary shapes: |P| with its direction, and the co-moving velocity, as Fig. 6.15).
 """
 import argparse
 import csv
@@ -72,6 +73,44 @@ def plot(rows, profiles, path):
     fig.savefig(path, dpi=120)
 
 
+def plot_shapes(rows, run_dirs, path):
+    """Fig. 6.15: per member the final |P| with P's direction, and |v - v_cell e1| with its
+    direction, around the cell."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import matplotlib.tri as mtri
+    from plot_polar_gel import arrows
+    from cellphase_results import read_fields
+    fig, axes = plt.subplots(2, len(rows), figsize=(3.4 * len(rows), 5.2), squeeze=False,
+                             constrained_layout=True)
+    for j, r in enumerate(rows):
+        _, points, cells, values = list(read_fields(run_dirs[r["inv_fa"]], ["phi", "P", "v"]))[-1]
+        tri = mtri.Triangulation(points[:, 0], points[:, 1], cells)
+        phi = values["phi"]
+        inside = np.clip((1 + phi) / 2, 0, 1)
+        centre = (points[:, :2] * inside[:, None]).sum(axis=0) / inside.sum()
+        co_moving = values["v"][:, :2] - np.array([r["v_cell"], 0.0])
+        for i, (label, field) in enumerate([("|P|", values["P"][:, :2]),
+                                            ("|v - v_cell e1|", co_moving)]):
+            ax = axes[i][j]
+            image = ax.tripcolor(tri, np.linalg.norm(field, axis=1), shading="gouraud",
+                                 cmap="viridis")
+            arrows(ax, tri, field, centre, 8.0, "w")
+            ax.tricontour(tri, phi, levels=[0.0], colors="r", linewidths=0.8)
+            ax.set_xlim(centre[0] - 8.8, centre[0] + 8.8)
+            ax.set_ylim(centre[1] - 6.8, centre[1] + 6.8)
+            ax.set_aspect("equal")
+            ax.set_xticks([])
+            ax.set_yticks([])
+            fig.colorbar(image, ax=ax, shrink=0.7)
+            if i == 0:
+                ax.set_title(f"1/Fa = {r['inv_fa']:g}, v_cell = {r['v_cell']:.3f}", fontsize=9)
+            if j == 0:
+                ax.set_ylabel(label)
+    fig.savefig(path, dpi=110)
+
+
 def write_markdown(rows, study, path):
     c = study.common
     lines = ["# The polar gel cell as a squirmer (thesis Table 6.3, Fig. 6.14)", "",
@@ -105,7 +144,10 @@ def write_markdown(rows, study, path):
               "- The thesis finds pullers for 1/Fa <= 0.5 (m > 0, A_str < 0), near-neutral "
               "swimmers at 0.75 and pushers for 1/Fa >= 1 (m < 0, A_str > 0), with the far "
               "field dominated by the Stokeslet.", "",
-              "![profiles and fits](polar-squirmer.png)", ""]
+              "![profiles and fits](polar-squirmer.png)", "",
+              "Stationary shapes (Fig. 6.15), moving to the right: |P| and the direction of "
+              "P, and the velocity in the co-moving frame.", "",
+              "![stationary shapes](polar-squirmer-shapes.png)", ""]
     path.write_text("\n".join(lines))
 
 
@@ -121,7 +163,7 @@ def main(argv=None):
                         "--jobs", str(args.jobs)], check=False)
     study = load_study(args.study)
     end_time = float(study.common["numerics.end_time"])
-    rows, profiles = [], {}
+    rows, profiles, run_dirs = [], {}, {}
     for r in study_runner.collect(study):
         inv_fa = float(r["params"]["polar_gel.activity"])
         if r["status"] != "ok":
@@ -132,6 +174,7 @@ def main(argv=None):
         row["settled"] = int(row["t_end"] < end_time - 1e-9)
         rows.append(row)
         profiles[inv_fa] = profile
+        run_dirs[inv_fa] = study.output / r["name"]
     if not rows:
         sys.exit("no member finished (run without --report-only)")
     rows.sort(key=lambda r: r["inv_fa"])
@@ -143,6 +186,7 @@ def main(argv=None):
             writer.writerow({k: (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k])
                              for k in COLUMNS})
     plot(rows, profiles, RESULTS / "polar-squirmer.png")
+    plot_shapes(rows, run_dirs, RESULTS / "polar-squirmer-shapes.png")
     write_markdown(rows, study, RESULTS / "polar-squirmer.md")
     for r in rows:
         print(f"1/Fa {r['inv_fa']:<5g} v_cell {r['v_cell']:.4f}  n1 {r['n1']:.3f}  m {r['m']:+.3f}"
