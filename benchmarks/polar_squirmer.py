@@ -123,8 +123,9 @@ def write_markdown(rows, study, path):
              f"{c['numerics.end_time']}). Fits on the final state: the surface profile "
              "(6.18) on phi = 0 and the far field (6.19) outside r = 5, both in the "
              "co-moving frame (python/squirmer_fit.py). Thesis values in parentheses.", "",
-             "| 1/Fa | v_cell | n1 | m | A_st | A_str | A_sd | settled at t |",
-             "|---|---|---|---|---|---|---|---|"]
+             "| 1/Fa | v_cell | n1 | m | A_st | A_str | A_sd | settled at t | v_cell over the "
+             "last 50 time units |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         th = THESIS.get(r["inv_fa"], {})
 
@@ -134,13 +135,16 @@ def write_markdown(rows, study, path):
         lines.append(f"| {r['inv_fa']:g} | {cell('v_cell', '.4f')} | {cell('n1', '.3f')} | "
                      f"{cell('m', '.3f')} | {cell('A_st', '.4f')} | {cell('A_str', '.4f')} | "
                      f"{cell('A_sd', '.3f')} | "
-                     f"{r['t_end']:g}{'' if r['settled'] else ' (not settled)'} |")
+                     f"{r['t_end']:g}{'' if r['settled'] else ' (not settled)'} | "
+                     f"{r['v_range'][0]:.4f} .. {r['v_range'][1]:.4f} |")
     kinds = []
     for r in rows:
         kind = "puller" if r["m"] > 0.1 else "pusher" if r["m"] < -0.1 else "near neutral"
         kinds.append(f"1/Fa = {r['inv_fa']:g}: m = {r['m']:.3f} ({kind}), "
                      f"A_str = {r['A_str']:.3f}")
     lines += ["", "- " + "; ".join(kinds) + ".",
+              "- A member that reached the end time unsettled has moved within the range of "
+              "the last column over its last 50 time units; its fits use the final state.",
               "- The thesis finds pullers for 1/Fa <= 0.5 (m > 0, A_str < 0), near-neutral "
               "swimmers at 0.75 and pushers for 1/Fa >= 1 (m < 0, A_str > 0), with the far "
               "field dominated by the Stokeslet.", "",
@@ -172,6 +176,9 @@ def main(argv=None):
         row, profile = fit_member(study.output / r["name"])
         row["inv_fa"] = inv_fa
         row["settled"] = int(row["t_end"] < end_time - 1e-9)
+        t, v = r["obs"]["time"], r["obs"]["cell_velocity_x"]  # the spread of the last 50
+        last = [x for s_, x in zip(t, v) if s_ >= t[-1] - 50 - 1e-9]
+        row["v_range"] = (min(last), max(last))
         rows.append(row)
         profiles[inv_fa] = profile
         run_dirs[inv_fa] = study.output / r["name"]
