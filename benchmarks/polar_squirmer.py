@@ -80,7 +80,7 @@ def plot_shapes(rows, run_dirs, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import matplotlib.tri as mtri
-    from plot_polar_gel import arrows
+    from plot_polar_gel import draw_panel
     from cellphase_results import read_fields
     fig, axes = plt.subplots(2, len(rows), figsize=(3.4 * len(rows), 5.2), squeeze=False,
                              constrained_layout=True)
@@ -94,16 +94,7 @@ def plot_shapes(rows, run_dirs, path):
         for i, (label, field) in enumerate([("|P|", values["P"][:, :2]),
                                             ("|v - v_cell e1|", co_moving)]):
             ax = axes[i][j]
-            image = ax.tripcolor(tri, np.linalg.norm(field, axis=1), shading="gouraud",
-                                 cmap="viridis")
-            arrows(ax, tri, field, centre, 8.0, "w")
-            ax.tricontour(tri, phi, levels=[0.0], colors="r", linewidths=0.8)
-            ax.set_xlim(centre[0] - 8.8, centre[0] + 8.8)
-            ax.set_ylim(centre[1] - 6.8, centre[1] + 6.8)
-            ax.set_aspect("equal")
-            ax.set_xticks([])
-            ax.set_yticks([])
-            fig.colorbar(image, ax=ax, shrink=0.7)
+            draw_panel(fig, ax, tri, phi, field, centre, 8.0)
             if i == 0:
                 ax.set_title(f"1/Fa = {r['inv_fa']:g}, v_cell = {r['v_cell']:.3f}", fontsize=9)
             if j == 0:

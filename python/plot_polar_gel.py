@@ -46,6 +46,21 @@ def arrows(ax, tri, field, centre, half_width, colour):
     ax.quiver(gx, gy, fx, fy, color=colour, width=0.004)
 
 
+def draw_panel(fig, ax, tri, phi, field, centre, half_width):
+    """|field| with its direction and the zero level set of phi, around centre."""
+    size = np.linalg.norm(field, axis=1)
+    image = ax.tripcolor(tri, size, shading="gouraud", cmap="viridis")
+    if size.max() > 0:  # (the velocity before the first step is zero)
+        arrows(ax, tri, field, centre, half_width, "w")
+    ax.tricontour(tri, phi, levels=[0.0], colors="r", linewidths=0.8)
+    ax.set_xlim(centre[0] - 1.1 * half_width, centre[0] + 1.1 * half_width)
+    ax.set_ylim(centre[1] - 0.85 * half_width, centre[1] + 0.85 * half_width)
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    fig.colorbar(image, ax=ax, shrink=0.7)
+
+
 def draw_fields(run_dir, obs, times, half_width):
     frames = nearest_frames(run_dir, times)
     rows = ["|P|", "|v| (laboratory)", "|v| (co-moving)"]
@@ -67,17 +82,7 @@ def draw_fields(run_dir, obs, times, half_width):
         co_moving = v - np.array([v_cell, v_cell_y])
         for i, (name, field) in enumerate(zip(rows, [P, v, co_moving])):
             ax = axes[i][j]
-            size = np.linalg.norm(field, axis=1)
-            image = ax.tripcolor(tri, size, shading="gouraud", cmap="viridis")
-            if size.max() > 0:  # (the velocity before the first step is zero)
-                arrows(ax, tri, field, centre, half_width, "w")
-            ax.tricontour(tri, phi, levels=[0.0], colors="r", linewidths=0.8)
-            ax.set_xlim(centre[0] - 1.1 * half_width, centre[0] + 1.1 * half_width)
-            ax.set_ylim(centre[1] - 0.85 * half_width, centre[1] + 0.85 * half_width)
-            ax.set_aspect("equal")
-            ax.set_xticks([])
-            ax.set_yticks([])
-            fig.colorbar(image, ax=ax, shrink=0.7)
+            draw_panel(fig, ax, tri, phi, field, centre, half_width)
             if i == 0:
                 ax.set_title(f"t = {time:g}, v_cell = ({v_cell:.3g}, {v_cell_y:.3g})", fontsize=9)
             if j == 0:
