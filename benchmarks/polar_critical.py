@@ -11,7 +11,7 @@ instead of the up to 150 a member of the diagram needs to settle near the onset.
 is halved until it is at most 2 x TOL wide; its midpoint is 1/Fa_crit +- TOL. The zero of the
 growth rate interpolated linearly between the last bracket's ends is reported beside it.
 
-The time step follows the mesh (thesis section 6.4.4: the same relation between mesh size and
+The time step follows the mesh (thesis section 6.4.3: the same relation between mesh size and
 time step for every eps): dt = 0.1 eps / 0.42.
 
 Usage: /usr/bin/python3 benchmarks/polar_critical.py [--epsilons 0.42 0.3] [--bracket LO HI]
