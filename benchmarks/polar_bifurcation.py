@@ -16,7 +16,6 @@ polar-bifurcation.md and the diagram polar-bifurcation.png (|v_cell| against 1/F
 markers for members that had not settled).
 """
 import argparse
-import csv
 import subprocess
 import sys
 from pathlib import Path
@@ -25,6 +24,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
 from study_file import load_study  # noqa: E402
+from results_csv import write_csv  # noqa: E402
 
 COLUMNS = ["beta", "inv_fa", "epsilon", "v_cell", "settled", "t_end", "steps", "wall_time_s"]
 
@@ -157,13 +157,7 @@ def main(argv=None):
     if not rows:
         sys.exit("no member finished (run without --report-only)")
     out = ROOT / "benchmarks" / "results"
-    out.mkdir(parents=True, exist_ok=True)
-    with open(out / "polar-bifurcation.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=COLUMNS)
-        writer.writeheader()
-        for r in rows:
-            writer.writerow({k: (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k])
-                             for k in COLUMNS})
+    write_csv(out / "polar-bifurcation.csv", COLUMNS, rows)
     plot(rows, out / "polar-bifurcation.png")
     write_markdown(rows, missing, study, out / "polar-bifurcation.md")
     for r in rows:

@@ -37,6 +37,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from results_csv import write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 EXE = ROOT / "build" / "cellphase"
@@ -202,15 +203,8 @@ def plot(results, members, path):
 
 
 def write_results(results, members, tol, name, extra):
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    for file, columns, rows in ((f"{name}.csv", COLUMNS, results),
-                                (f"{name}-members.csv", MEMBER_COLUMNS, members)):
-        with open(RESULTS / file, "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=columns)
-            writer.writeheader()
-            for r in rows:
-                writer.writerow({k: (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k])
-                                 for k in columns})
+    write_csv(RESULTS / f"{name}.csv", COLUMNS, results)
+    write_csv(RESULTS / f"{name}-members.csv", MEMBER_COLUMNS, members)
     lines = ["# Critical activity of the polar gel cell (thesis Fig. 6.10)", "",
              f"Written by `benchmarks/polar_critical.py`. beta = {BETA}, the cell of "
              "`benchmarks/studies/polar-bifurcation.yaml` (30 x 20 channel, splay seed 0.1), "

@@ -17,7 +17,6 @@ polar-squirmer.png (the profiles and their fits, as Fig. 6.14) and polar-squirme
 (the stationary shapes: |P| with its direction, and the co-moving velocity, as Fig. 6.15).
 """
 import argparse
-import csv
 import subprocess
 import sys
 from pathlib import Path
@@ -29,6 +28,7 @@ sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
 import squirmer_fit as sq  # noqa: E402
 from study_file import load_study  # noqa: E402
+from results_csv import write_csv  # noqa: E402
 
 STUDY = ROOT / "benchmarks" / "studies" / "polar-squirmer.yaml"
 RESULTS = ROOT / "benchmarks" / "results"
@@ -176,13 +176,7 @@ def main(argv=None):
     if not rows:
         sys.exit("no member finished (run without --report-only)")
     rows.sort(key=lambda r: r["inv_fa"])
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    with open(RESULTS / "polar-squirmer.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=COLUMNS)
-        writer.writeheader()
-        for r in rows:
-            writer.writerow({k: (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k])
-                             for k in COLUMNS})
+    write_csv(RESULTS / "polar-squirmer.csv", COLUMNS, rows)
     plot(rows, profiles, RESULTS / "polar-squirmer.png")
     plot_shapes(rows, run_dirs, RESULTS / "polar-squirmer-shapes.png")
     write_markdown(rows, study, RESULTS / "polar-squirmer.md")

@@ -1,0 +1,12 @@
+"""Writing a benchmark's result table: one row per dict, floats to 6 significant digits."""
+import csv
+
+
+def write_csv(path, columns, rows):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=columns)
+        writer.writeheader()
+        for r in rows:
+            writer.writerow({k: (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k])
+                             for k in columns})
