@@ -25,19 +25,31 @@ kappa0 = kappa_of(phi0, mu0, H0)
 v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
 own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
 
+# Coupling stabilisation (flow.coupling_stabilisation = beta): the flow of the split saw the
+# force w^n grad phi^n (3.59), the energy law asks for w^{n+1}; with a small mobility gamma
+# the explicit bending force makes the split unstable unless dt ~ eta h^3 Be. An extra
+# mobility on the step's change, -div(beta grad(w^{n+1} - w^n)), damps that mode: it keeps
+# int phi exactly, is O(dt) (w^{n+1} - w^n = O(dt)), dissipates (beta |grad w^{n+1}|^2 less
+# the explicit part, bounded by Young's inequality) and is zero for beta = 0.
+beta_coupling, = constants("beta_coupling")
+COUPLING_DEGREE = 3  # exact for P2 gradients; a block of its own: beta = 0 adds exact zeros
+
+
 # Linear part shared by all time discretisations; `now` is the trial part of the time
 # derivative (phi, or c0 phi for BDF2).
 def linear_part(now):
     return (now * psi / dt + gamma * inner(grad(w), grad(psi))
             + w * zeta + 1 / Be * inner(grad(mu), grad(zeta))
             + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
-        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
+        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE) \
+        + beta_coupling * inner(grad(w), grad(psi)) * dx(degree=COUPLING_DEGREE)
 
 
 # `before`: the known part of the time derivative; kappa: the explicit curvature.
 def rhs_part(before, kappa):
     return before * psi / dt * dx + (lam_a / Be + sigma) * kappa * zeta * dxq \
-        + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
+        + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE) \
+        + beta_coupling * inner(grad(w0), grad(psi)) * dx(degree=COUPLING_DEGREE)
 
 
 # Taylor linearisation as in helfrich_l2.py (section 5.3), about (phi_l, mu_l)

@@ -78,6 +78,8 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
                 {"row_psi", constant(symmetrisable_ ? -nu.epsilon * scene.numbers.Be / pf.mobility
                                                     : 1.0)},
                 {"degenerate", constant(pf.degenerate_mobility ? 1.0 : 0.0)},
+                // forms/helfrich_hm1.py: mobility on the step's change of w (0 without flow)
+                {"beta_coupling", constant(scene.flow ? scene.flow->coupling_stabilisation : 0.0)},
                 // advect phi + 1 on a cell's own mesh (forms/cellphase_ufl.py)
                 {"own_mesh", constant(nu.mesh.cell_meshes == scene::Mesh::CellMeshes::own ? 1.0 : 0.0)},
                 {"cos_theta", constant(scene.contact_angle_deg

@@ -178,7 +178,12 @@ void flow_report(const Scene& s, Report& r)
   }
   const double cap = flow_capillary(s);
   if (s.phase_field.model == Model::helfrich_hm1)
+  {
     r.line("  interface force", "w grad phi (3.59), w = dE/dphi (3.62)");
+    if (f.coupling_stabilisation > 0)
+      r.line("  stabilised split", "-div(" + fmt(f.coupling_stabilisation)
+                                         + " grad(w^{n+1} - w^n)) in the phase field's step");
+  }
   else if (is_helfrich(s.phase_field.model))
     r.line("  interface force", "(dE/dphi) grad phi (3.81), dE/dphi of (3.84) projected on P2");
   else

@@ -200,7 +200,8 @@ void read_flow(const Section& top, Scene& s)
   }
   const Section f = top.section("flow");
   f.allow_only({"equations", "density", "viscosity", "gravity", "force", "cell_force",
-                "surface_tension", "walls", "petsc", "inextensibility"});
+                "surface_tension", "walls", "petsc", "inextensibility",
+                "coupling_stabilisation"});
   const Model m = s.phase_field.model;
   if (!couples_to_flow(m))
     top.fail("flow", std::string("phase_field.model ") + to_string(m)
@@ -246,6 +247,14 @@ void read_flow(const Section& top, Scene& s)
     }
     if (walls.has(sides[i]))
       flow.walls[i] = read_wall(walls, sides[i], dim);
+  }
+  if (f.has("coupling_stabilisation"))
+  {
+    if (m != Model::helfrich_hm1)
+      f.fail("coupling_stabilisation", std::string("model ") + to_string(m)
+                                           + " has no coupling stabilisation; it is a term of "
+                                             "helfrich_hm1");
+    flow.coupling_stabilisation = f.number("coupling_stabilisation", non_negative());
   }
   read_petsc_options(f.section("petsc"), flow.petsc);
   flow.inextensibility = read_inextensibility(f, m);

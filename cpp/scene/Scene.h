@@ -304,6 +304,9 @@ struct Flow
   std::map<std::string, WallSpec> tag_walls;
   std::map<std::string, std::string> petsc; ///< options of the flow solver (prefix flow_)
   std::optional<Inextensibility> inextensibility; ///< absent: the membrane may stretch
+  /// beta of forms/helfrich_hm1.py: a mobility on the step's change of the interface
+  /// potential, -div(beta grad(w^{n+1} - w^n)); 0: the thesis' explicit split.
+  double coupling_stabilisation = 0;
 };
 
 /// Initial value of one species: a constant, a constant where a formula is true (else
