@@ -40,7 +40,8 @@ from pathlib import Path
 from results_csv import write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
-EXE = ROOT / "build" / "cellphase"
+# $CELLPHASE_EXE runs a copy, so that a rebuild cannot replace the binary under a running study
+EXE = Path(os.environ.get("CELLPHASE_EXE", ROOT / "build" / "cellphase"))
 SCENE = ROOT / "demos" / "polar-gel-splay" / "scene.yaml"
 WORK = ROOT / "output" / "benchmarks" / "polar-critical"
 RESULTS = ROOT / "benchmarks" / "results"

@@ -12,10 +12,8 @@ set of the cells' phase field (black) and its -0.8 level set (blue), as in Fig. 
                                                        [--set KEY=VALUE ...]
 """
 import argparse
-import concurrent.futures
 import copy
 import pathlib
-import subprocess
 import sys
 
 import numpy as np
@@ -24,9 +22,8 @@ import yaml
 HERE = pathlib.Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(ROOT / "python"))
-from cellphase_results import read_fields  # noqa: E402
+from demo_variants import frames_at, run_all, run_variant  # noqa: E402
 
-EXE = ROOT / "build" / "cellphase"
 OUT = ROOT / "output" / "cell-collision"
 CASES = {
     "a": "one phase field",
@@ -56,27 +53,15 @@ def case_scene(base, case):
 
 def run(case, overrides):
     scene = case_scene(yaml.safe_load((HERE / "scene.yaml").read_text()), case)
-    OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / f"case-{case}.yaml"
-    path.write_text(yaml.safe_dump(scene))
-    cmd = [str(EXE), "run", str(path)] + [a for o in overrides for a in ("--set", o)]
-    with open(OUT / f"case-{case}.log", "w") as log:
-        proc = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT)
-    return case, proc.returncode
+    return run_variant(scene, OUT, f"case-{case}", overrides)
 
 
 def snapshot(run_dir, wanted):
-    """The output time nearest to each wanted time (None: the last one)."""
-    frames = list(read_fields(run_dir))
-    if not frames:
-        raise SystemExit(f"{run_dir}: no fields written")
-    field_names = frames[0][3].keys()
-    phase = "phi_cells" if "phi_cells" in field_names else "phi"
-    out = []
-    for t in wanted:
-        frame = frames[-1] if t is None else min(frames, key=lambda f: abs(f[0] - t))
-        out.append((frame, phase))
-    return out
+    """The output frames nearest to the wanted times (None: the last one), and the name
+    of the cells' phase field in them."""
+    frames = frames_at(run_dir, wanted)
+    phase = "phi_cells" if "phi_cells" in frames[0][3] else "phi"
+    return [(frame, phase) for frame in frames]
 
 
 def draw(cases):
@@ -145,13 +130,13 @@ def main():
     done = a.cases
     if not a.plot_only:
         done = []
-        with concurrent.futures.ThreadPoolExecutor(a.parallel) as pool:
-            for case, rc in pool.map(lambda c: run(c, a.set), a.cases):
-                print(f"case ({case}) {CASES[case]}: "
-                      + ("done" if rc == 0 else f"failed (exit {rc}), see {OUT / f'case-{case}.log'}"),
-                      flush=True)
-                if rc == 0:
-                    done.append(case)
+        runs = {c: (lambda c=c: run(c, a.set)) for c in a.cases}
+        for case, rc in run_all(runs, a.parallel):
+            print(f"case ({case}) {CASES[case]}: "
+                  + ("done" if rc == 0 else f"failed (exit {rc}), see {OUT / f'case-{case}.log'}"),
+                  flush=True)
+            if rc == 0:
+                done.append(case)
     if not done:
         raise SystemExit("no case finished: nothing to draw")
     draw(done)
