@@ -162,10 +162,15 @@ def interaction_w(phi, eps, r1, r2, a1, a2, a3):
     return _inside_band(phi)(w)
 
 
-def interaction_dw(phi, eps, r1, r2, a1, a2, a3):
-    """d w / d phi = (d w / d d) (d d / d phi), d d / d phi = -(eps / sqrt2) 2 / (1 - phi^2)."""
-    from ufl import exp, sqrt
+def interaction_dw(phi, eps, r1, r2, a1, a2, a3, reach):
+    """d w / d phi = (d w / d d) (d d / d phi), d d / d phi = -(eps / sqrt2) 2 / (1 - phi^2),
+    where |d| < reach eps (interaction.derivative_reach; unlimited by default). d d / d phi
+    grows like e^(sqrt2 |d| / eps): a long-range w (the adhesion of the Lennard-Jones-like
+    potential, a3 = 20) makes the term w'_i B(phi_j) of (7.11) huge inside cell j, far from
+    cell i's membrane, where it moves phi_i instead of the membrane."""
+    from ufl import conditional, exp, lt, sqrt
     d, p = _distance(phi, eps)
     dw_dd = (-2 * d / (r2 * eps**2) * r1 * exp(-d**2 / (r2 * eps**2))
              + 2 * (d - a2 * eps) / (a3 * eps**2) * a1 * exp(-(d - a2 * eps)**2 / (a3 * eps**2)))
-    return _inside_band(phi)(dw_dd * (-eps / sqrt(2.0)) * 2 / (1 - p**2))
+    dw = conditional(lt(abs(d), reach * eps), dw_dd * (-eps / sqrt(2.0)) * 2 / (1 - p**2), 0.0)
+    return _inside_band(phi)(dw)

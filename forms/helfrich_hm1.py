@@ -95,9 +95,10 @@ L_mu = (-eps * inner(grad(phi_init), grad(q)) - dW0(phi_init, eps, H0) / eps * q
 # w_sum = sum_j w_j and B_sum = sum_j B(phi_j) (P2 fields at t^n, cpp/physics/Interaction).
 from cellphase_ufl import dB_of, interaction_dw  # noqa: E402
 w_sum, B_sum = Coefficient(V), Coefficient(V)
-In_inv, r1, r2, a1, a2, a3 = constants("In_inv", "r1", "r2", "a1", "a2", "a3")
+In_inv, r1, r2, a1, a2, a3, dw_reach = constants("In_inv", "r1", "r2", "a1", "a2", "a3",
+                                                 "dw_reach")
 load_int = In_inv * (dB_of(phi0, eps) * w_sum
-                     + interaction_dw(phi0, eps, r1, r2, a1, a2, a3) * B_sum) * zeta * dxq
+                     + interaction_dw(phi0, eps, r1, r2, a1, a2, a3, dw_reach) * B_sum) * zeta * dxq
 
 # The same source as a P2 field (its L2 projection, with a1 phi_h of one's choice): with
 # interaction.refresh the module replaces the part of w that load_int made from phi^n by
@@ -105,7 +106,7 @@ load_int = In_inv * (dB_of(phi0, eps) * w_sum
 # next force (7.12) does not lag the cells' positions by a step.
 phi_h = Coefficient(V)
 L_int = In_inv * (dB_of(phi_h, eps) * w_sum
-                  + interaction_dw(phi_h, eps, r1, r2, a1, a2, a3) * B_sum) * q * dxq
+                  + interaction_dw(phi_h, eps, r1, r2, a1, a2, a3, dw_reach) * B_sum) * q * dxq
 
 forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int, L_int, a_bdf2, L_bdf2, load_a_bdf2]
 

@@ -6,6 +6,7 @@
 #include "scene/InteractionPairs.h"
 #include "util/Clock.h"
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 
@@ -170,7 +171,9 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
       module_.set_interaction(fields.get(scene::interaction_sum_field(group_.name, "w_sum", k)),
                               fields.get(scene::interaction_sum_field(group_.name, "B_sum", k)),
                               {{"In_inv", c(1 / in.In)}, {"r1", c(p.r1)}, {"r2", c(p.r2)},
-                               {"a1", c(p.a1)}, {"a2", c(p.a2)}, {"a3", c(p.a3)}},
+                               {"a1", c(p.a1)}, {"a2", c(p.a2)}, {"a3", c(p.a3)},
+                               {"dw_reach", c(in.derivative_reach.value_or(
+                                                std::numeric_limits<double>::max()))}},
                               in.refresh);
     }
   }

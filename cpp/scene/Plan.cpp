@@ -1,5 +1,6 @@
 #include "scene/Plan.h"
 #include "scene/InteractionPairs.h"
+#include "scene/YamlRead.h"
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -35,6 +36,9 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
   PlanStep interaction{"interaction", "interaction between cells (7.5), (7.11)", {}, {}};
   if (s.interaction && s.interaction->refresh)
     interaction.description += "; sums and w made again from phi^{n+1} after the step (refresh)";
+  if (s.interaction && s.interaction->derivative_reach)
+    interaction.description += "; w'_i of (7.11) within " + yaml::fmt(*s.interaction->derivative_reach)
+                               + " epsilon of the membrane (derivative_reach)";
   if (s.interaction && !s.interaction->pairs.empty())
     interaction.description += "; " + std::to_string(s.interaction->pairs.size())
                                + " pair(s) with In or potential of their own ("

@@ -97,7 +97,8 @@ void read_interaction(const Section& top, Scene& s)
   if (!top.has("interaction"))
     return;
   const Section in = top.section("interaction");
-  in.allow_only({"potential", "In", "r1", "r2", "a1", "a2", "a3", "refresh", "pairs"});
+  in.allow_only({"potential", "In", "r1", "r2", "a1", "a2", "a3", "refresh", "pairs",
+                 "derivative_reach"});
   if (s.phase_field.model != Model::helfrich_hm1)
     in.fail(std::string("is built for the H^-1 Helfrich flow of chapter 7 (phase_field.model: "
                         "helfrich_hm1); model ")
@@ -113,6 +114,8 @@ void read_interaction(const Section& top, Scene& s)
   i.potential = read_potential(in);
   i.pairs = read_pairs(in, i, s);
   i.refresh = in.boolean("refresh", false);
+  if (in.has("derivative_reach"))
+    i.derivative_reach = in.number("derivative_reach", positive());
   s.interaction = i;
 }
 } // namespace cellphase::scene

@@ -88,6 +88,9 @@ struct Interaction
   /// The interaction part of each cell's w (phi#, the flow's force 7.12) made again from
   /// phi^{n+1} after every step; false: from phi^n, as the step's source (7.11) uses it.
   bool refresh = false;
+  /// w'_i of (7.11) only where the distance |d_i| < derivative_reach eps (forms/cellphase_ufl.py);
+  /// absent: wherever |phi_i| < 1, as the thesis writes it.
+  std::optional<double> derivative_reach;
 };
 
 /// The phase-field / membrane model of section 2.5 and 3.4.1.

@@ -121,3 +121,21 @@ def test_check_names_the_pairs_of_their_own(tmp_path):
         THREE, {"In": 0.1, "pairs": [{"cells": ["mid", "right"], "In": 1}, {"cells": ["left", "mid"], **LJ}]}))
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "2 pair(s) with In or potential of their own (2 potential(s)" in proc.stdout, proc.stdout
+
+
+def test_derivative_reach_keeps_the_adhesive_potential_on_the_membranes(tmp_path):
+    """interaction.derivative_reach: w'_i of (7.11) grows like e^(sqrt2 |d| / eps) away from
+    cell i's membrane; the adhesion of Fig. 7.7b (a3 = 20) decays slower, so inside the
+    other cell's band w'_i B(phi_j) is huge and moves phi_i there. Without a reach the two
+    overlapping circles at In = 1 stop at step 2 (phi_left 15.6, beyond the bound 2); within
+    3 epsilon of the membrane they run, phi stays in [-1.0002, 1] (measured -1.00015)."""
+    scene = with_interaction(TWO, {"In": 1.0, "refresh": True, **LJ})
+    (tmp_path / "unlimited").mkdir()
+    with pytest.raises(AssertionError, match="phi_bound"):
+        run_scene(scene, tmp_path / "unlimited")
+    scene["interaction"]["derivative_reach"] = 3
+    (tmp_path / "reach").mkdir()
+    c = run_scene(scene, tmp_path / "reach")
+    assert len(c["time"]) == 13  # all 12 steps
+    assert min(c["phi_min"]) > -1.0002 and max(c["phi_max"]) < 1
+    assert abs(c["interaction_energy"][0]) > 0.01
