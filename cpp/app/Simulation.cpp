@@ -710,8 +710,10 @@ void Simulation::run()
     std::filesystem::create_directories(scene_.output.directory);
   MPI_Barrier(comm_);
   stop_signal::install();
-  last_step_ = int(scene::number_of_steps(scene_));
   LoopState at = restart_ ? restore() : initialise();
+  // The steps left to end_time at the scene's dt: a restart may change numerics.dt (or
+  // end_time), so they are counted from the restored time, not from t = 0.
+  last_step_ = at.step + int(scene::steps_between(scene_, at.time));
   open_output(at);
   keep_good_state(at);
   const int every = scene_.output.checkpoints.every; // 0: no checkpoints

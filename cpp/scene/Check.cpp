@@ -226,12 +226,15 @@ void flow_report(const Scene& s, Report& r)
 
 } // namespace
 
-long number_of_steps(const Scene& s)
+long number_of_steps(const Scene& s) { return steps_between(s, 0.0); }
+
+long steps_between(const Scene& s, double from)
 {
   // A remainder below 1e-6 dt is round-off of the scene's numbers (end_time = 1, dt = 1e-3
   // is 1000 steps; end_time = 0.2, dt = 0.00114285714 is 175): the last step ends at
   // end_time instead of adding a step of 1e-10, whose system is singular to working precision.
-  return static_cast<long>(std::ceil(s.numerics.end_time / s.numerics.dt - 1e-6));
+  const double steps = (s.numerics.end_time - from) / s.numerics.dt;
+  return std::max(0L, static_cast<long>(std::ceil(steps - 1e-6)));
 }
 
 std::string stabilised_accuracy_warning(const Scene& s)

@@ -17,6 +17,8 @@ SizeEstimate estimate_size(const Scene& s);
 
 /// Number of time steps, ceil(end_time / dt) (with a little tolerance for rounding).
 long number_of_steps(const Scene& s);
+/// Steps of numerics.dt from time `from` to end_time (the last one shortened to end there).
+long steps_between(const Scene& s, double from);
 /// Field writes: the initial state plus one every output.every steps (0 if every == 0).
 long number_of_outputs(const Scene& s);
 /// "" or why the stabilised scheme is far less accurate than Taylor's at the scene's dt

@@ -201,6 +201,22 @@ def test_far_too_large_time_step_stops_with_last_good_state(tmp_path):
     assert "restarting from" in proc.stdout and "(step 0, t = 0)" in proc.stdout
 
 
+def test_restart_with_a_smaller_time_step_counts_its_steps_from_the_restored_time(tmp_path):
+    """A run to t = 0.02 at dt 1e-3 continued to t = 0.03 at dt 5e-4: 20 more steps ending
+    exactly at 0.03. (The count used to be end_time / dt from t = 0, 60 steps: after 20 the
+    run went on with steps of round-off size, whose system MUMPS could not factorise.)"""
+    scene = vesicle_scene(end_time=0.02)
+    run_dir = tmp_path / "run"
+    scene_path = write_scene(scene, tmp_path, run_dir)
+    assert cellphase(["run", scene_path]).returncode == 0
+    proc = cellphase(["run", scene_path, "--restart", run_dir, "--set", "numerics.dt=5e-4",
+                      "--set", "numerics.end_time=0.03"])
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    steps = [(int(r["step"]), float(r["time"])) for r in rows(run_dir)]
+    assert steps[-1][0] == 40 and steps[-1][1] == 0.03
+    assert all(abs((t1 - t0) - 5e-4) < 1e-12 for (_, t0), (_, t1) in zip(steps[20:], steps[21:]))
+
+
 def test_volume_drift_beyond_the_scene_limit_stops(tmp_path):
     scene = circle_scene("allen_cahn_volume", end_time=0.005)
     scene["numerics"]["limits"] = {"volume_drift": 1e-12}
