@@ -54,7 +54,7 @@ def draw(names, times):
             speed = np.linalg.norm(values["v"][:, :2], axis=1)
             pc = ax.tripcolor(tri, speed, shading="gouraud", cmap="Blues", vmin=0, vmax=6)
             ax.tricontour(tri, values["phi_cells"], levels=[0.0], colors="k", linewidths=0.8)
-            ax.set(xlim=(0, 6.8), ylim=(-2.6, 2.6), xticks=[], yticks=[])
+            ax.set(xlim=(0, 5.5), ylim=(-1.6, 1.6), xticks=[], yticks=[])  # the cells' reach by t = 0.6
             ax.set_aspect("equal")
             if row == 0:
                 ax.set_title(f"t = {t:.2f}", fontsize=9)
