@@ -34,13 +34,15 @@ def gather():
     rows, missing = [], []
     for eta_out, eta_in, name in SETTINGS:
         path = RESULTS / f"{name}.csv"
-        found = [r for r in csv.DictReader(open(path))
-                 if float(r["epsilon"]) == EPSILON] if path.exists() else []
+        found = []
+        if path.exists():
+            with open(path) as f:
+                found = [r for r in csv.DictReader(f) if float(r["epsilon"]) == EPSILON]
         if not found:
             missing.append((eta_out, eta_in, name))
             continue
         r = found[0]
-        rows.append({"eta_outside": eta_out, "eta_inside": eta_in, "epsilon": EPSILON,
+        rows.append({"eta_outside": eta_out, "eta_inside": eta_in, "epsilon": EPSILON, "name": name,
                      **{k: float(r[k]) for k in ("inv_fa_crit", "bracket_lo", "bracket_hi")}})
     return rows, missing
 
@@ -75,9 +77,9 @@ def main():
              "cell, eta_1 inside, both relative to the reference viscosity of the flow's Re.", "",
              "| eta_0 (outside) | eta_1 (inside) | 1/Fa_crit | bracket | run with |",
              "|---|---|---|---|---|"]
-    for r, (eta_out, eta_in, name) in zip(rows, [s for s in SETTINGS if s not in missing]):
-        lines.append(f"| {eta_out:g} | {eta_in:g} | {r['inv_fa_crit']:.3f} | "
-                     f"({r['bracket_lo']:.4g}, {r['bracket_hi']:.4g}) | `{name}.md` |")
+    for r in rows:
+        lines.append(f"| {r['eta_outside']:g} | {r['eta_inside']:g} | {r['inv_fa_crit']:.3f} | "
+                     f"({r['bracket_lo']:.4g}, {r['bracket_hi']:.4g}) | `{r['name']}.md` |")
     for s in missing:
         lines.append(f"| {s[0]:g} | {s[1]:g} | not run | | `{command(*s)}` |")
     lines += ["", "The thesis (section 6.4.4): equal viscosities lowered together lower the "
