@@ -108,7 +108,16 @@ phi_h = Coefficient(V)
 L_int = In_inv * (dB_of(phi_h, eps) * w_sum
                   + interaction_dw(phi_h, eps, r1, r2, a1, a2, a3, dw_reach) * B_sum) * q * dxq
 
-forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int, L_int, a_bdf2, L_bdf2, load_a_bdf2]
+# interaction.flow_force: false. Summed over the cells, the interaction's part of the flow's
+# force (7.12) is a gradient, (1/In) grad sum_{i != j} B(phi_i) w_j, which the pressure
+# absorbs. The module then keeps the interaction out of w (which the flow reads) and gives
+# it to the mobility term instead: gamma Lap(w + w_int) with w_int = P(source), the L2
+# projection of L_int at phi^n. In exact arithmetic the same step as with load_int.
+w_int = Coefficient(V)
+load_int_mobility = -gamma * inner(grad(w_int), grad(psi)) * dx
+
+forms = [a, L, a_stab, L_stab, load_a, a_mu, L_mu, load_int, L_int, load_int_mobility, a_bdf2,
+         L_bdf2, load_a_bdf2]
 
 # The orientation field of an active polar gel in phi# (6.15): dE_P/dphi of (6.4),
 # (1/Pa) (-(c1/2) |P|^2 - beta div P) with P = P^{n+1} (section 6.3, step 3; (6.15) prints

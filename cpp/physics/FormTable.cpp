@@ -78,6 +78,7 @@ ModelForms model_forms(scene::Model model, int dim)
   f.load_a = optional(file, dim, "load_a");
   f.load_int = optional(file, dim, "load_int");
   f.L_int = optional(file, dim, "L_int");
+  f.load_int_mobility = optional(file, dim, "load_int_mobility");
   f.load_polar = optional(file, dim, "load_polar");
   // (2.27) is the multiplier of allen_cahn_volume only; plain Allen-Cahn has none.
   if (model == scene::Model::allen_cahn || model == scene::Model::allen_cahn_volume)

@@ -35,6 +35,9 @@ struct ModelForms
   ufcx_form* load_int = nullptr;
   /// The same source as a linear form on P2 (coefficients phi_h, w_sum, B_sum)
   ufcx_form* L_int = nullptr;
+  /// -gamma grad(w_int) . grad(psi): the source's projection w_int in the mobility term, not
+  /// in w (interaction.flow_force: false; coefficients u0, w_int)
+  ufcx_form* load_int_mobility = nullptr;
   /// Explicit orientation-field source of (6.15) (helfrich_hm1; coefficients P_polar, u0)
   ufcx_form* load_polar = nullptr;
 };

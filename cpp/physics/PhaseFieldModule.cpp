@@ -213,10 +213,14 @@ void PhaseFieldModule::add_source(const ufcx_form* form, const std::string& term
 
 void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
                                        std::shared_ptr<const Function> B_sum,
-                                       const ConstantMap& parameters, bool refresh)
+                                       const ConstantMap& parameters, bool refresh,
+                                       bool in_flow_force)
 {
-  add_source(forms_.load_int, "interaction", {{"w_sum", w_sum}, {"B_sum", B_sum}}, parameters);
-  if (!refresh)
+  if (in_flow_force)
+    add_source(forms_.load_int, "interaction", {{"w_sum", w_sum}, {"B_sum", B_sum}}, parameters);
+  else if (!forms_.load_int_mobility)
+    throw std::logic_error("model has no interaction term outside w (load_int_mobility)");
+  if (!refresh && in_flow_force)
     return;
   ConstantMap constants = constants_;
   constants.insert(parameters.begin(), parameters.end());
@@ -229,6 +233,8 @@ void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
       *compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_), comm_, "interaction_");
   interaction_of_step_ = std::make_shared<Function>(V_);
   interaction_now_ = std::make_shared<Function>(V_);
+  if (!in_flow_force) // gamma Lap(w + P(source)): w, which the flow reads, stays without it
+    add_source(forms_.load_int_mobility, "interaction", {{"w_int", interaction_of_step_}}, {});
 }
 
 std::vector<const Form*> PhaseFieldModule::interaction_sources() const

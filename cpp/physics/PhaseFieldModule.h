@@ -56,8 +56,12 @@ public:
   /// forms/helfrich_hm1.py from the other cells' sums w_sum, B_sum (P2 on this mesh,
   /// updated in place before each step) and the constants In_inv, r1, r2, a1, a2, a3.
   /// Call after every attach, once for each potential (the sources add up).
+  /// in_flow_force false (interaction.flow_force): the source's L2 projection w_int enters
+  /// the mobility term, gamma Lap(w + w_int), instead of w, so that w and the flow's force
+  /// (7.12) hold the cell's own energy only (load_int_mobility).
   void set_interaction(std::shared_ptr<const Function> w_sum, std::shared_ptr<const Function> B_sum,
-                       const ConstantMap& parameters, bool refresh = false);
+                       const ConstantMap& parameters, bool refresh = false,
+                       bool in_flow_force = true);
   /// interaction.refresh: after the step (phi^{n+1} in place, the sums made again from the
   /// other cells' phi^{n+1}), w += P(source now) - P(source of the step), P the L2
   /// projection onto P2. The flow's next force then sees the interaction of the cells'
@@ -193,7 +197,8 @@ private:
   /// Explicit sources of the step's right-hand side: (7.11), (6.15); none by default.
   std::vector<std::shared_ptr<Form>> sources_;
   std::unique_ptr<dolfinx::la::Vector<T>> source_b_; ///< their vector
-  // interaction.refresh: the source (7.11) as P2 fields, of the step and after it
+  // interaction.refresh or flow_force false: the source (7.11) as P2 fields, of the step
+  // and after it
   std::vector<std::shared_ptr<Form>> interaction_rhs_; ///< one per potential
   std::vector<const Form*> interaction_sources() const;
   std::unique_ptr<L2Projection> interaction_projection_;

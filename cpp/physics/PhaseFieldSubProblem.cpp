@@ -174,7 +174,7 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
                                {"a1", c(p.a1)}, {"a2", c(p.a2)}, {"a3", c(p.a3)},
                                {"dw_reach", c(in.derivative_reach.value_or(
                                                 std::numeric_limits<double>::max()))}},
-                              in.refresh);
+                              in.refresh, in.flow_force);
     }
   }
   if (std::count(reads().begin(), reads().end(), "polar.P"))

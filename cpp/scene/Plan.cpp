@@ -36,6 +36,9 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
   PlanStep interaction{"interaction", "interaction between cells (7.5), (7.11)", {}, {}};
   if (s.interaction && s.interaction->refresh)
     interaction.description += "; sums and w made again from phi^{n+1} after the step (refresh)";
+  if (s.interaction && !s.interaction->flow_force)
+    interaction.description += "; not in the flow's force (flow_force: false, a gradient the "
+                               "pressure absorbs): in the phase fields' mobility term";
   if (s.interaction && s.interaction->derivative_reach)
     interaction.description += "; w'_i of (7.11) within " + yaml::fmt(*s.interaction->derivative_reach)
                                + " epsilon of the membrane (derivative_reach)";

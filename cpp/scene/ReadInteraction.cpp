@@ -98,7 +98,7 @@ void read_interaction(const Section& top, Scene& s)
     return;
   const Section in = top.section("interaction");
   in.allow_only({"potential", "In", "r1", "r2", "a1", "a2", "a3", "refresh", "pairs",
-                 "derivative_reach"});
+                 "derivative_reach", "flow_force"});
   if (s.phase_field.model != Model::helfrich_hm1)
     in.fail(std::string("is built for the H^-1 Helfrich flow of chapter 7 (phase_field.model: "
                         "helfrich_hm1); model ")
@@ -114,6 +114,10 @@ void read_interaction(const Section& top, Scene& s)
   i.potential = read_potential(in);
   i.pairs = read_pairs(in, i, s);
   i.refresh = in.boolean("refresh", false);
+  i.flow_force = in.boolean("flow_force", true);
+  if (i.refresh && !i.flow_force)
+    in.fail("refresh", "makes the interaction part of the flow's force again after the step, "
+                       "but flow_force: false leaves that part out; give one of the two");
   if (in.has("derivative_reach"))
     i.derivative_reach = in.number("derivative_reach", positive());
   s.interaction = i;

@@ -88,6 +88,10 @@ struct Interaction
   /// The interaction part of each cell's w (phi#, the flow's force 7.12) made again from
   /// phi^{n+1} after every step; false: from phi^n, as the step's source (7.11) uses it.
   bool refresh = false;
+  /// The interaction's part of phi# in the flow's force (7.12), as the thesis writes it.
+  /// false: left out; summed over the cells it is the gradient (1/In) grad sum B(phi_i) w_j,
+  /// which the pressure absorbs, so only its discretisation error goes with it.
+  bool flow_force = true;
   /// w'_i of (7.11) only where the distance |d_i| < derivative_reach eps (forms/cellphase_ufl.py);
   /// absent: wherever |phi_i| < 1, as the thesis writes it.
   std::optional<double> derivative_reach;
