@@ -26,10 +26,8 @@ from demo_variants import frames_at, run_all, run_variant  # noqa: E402
 OUT = ROOT / "output" / "rbc-bifurcation"
 POTENTIALS = {
     "repulsive": {"potential": "repulsive", "r1": 1, "r2": 4},
-    # w'_i of (7.11) within 3 eps of the membrane: the adhesion (a3 = 20) reaches so far that
-    # the unlimited derivative moves phi_i inside the neighbours (docs/scenes.md, interaction)
-    "lennard_jones": {"potential": "lennard_jones", "r1": 2, "r2": 1, "a1": 1, "a2": 0, "a3": 20,
-                      "derivative_reach": 3},
+    # with the scene's derivative_reach 3 and flow_force false (docs/scenes.md, interaction)
+    "lennard_jones": {"potential": "lennard_jones", "r1": 2, "r2": 1, "a1": 1, "a2": 0, "a3": 20},
 }
 
 
