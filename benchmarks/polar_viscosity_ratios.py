@@ -21,7 +21,8 @@ EPSILON = 0.42
 # (eta_outside, eta_inside, result name of polar_critical.py)
 SETTINGS = [(1.0, 1.0, "polar-critical"),
             (0.5, 0.5, "polar-critical-viscosity"),
-            (1.0, 2.0, "polar-critical-viscosity-inside2")]
+            (1.0, 2.0, "polar-critical-viscosity-inside2"),
+            (1.0, 0.5, "polar-critical-viscosity-inside05")]
 COLUMNS = ["eta_outside", "eta_inside", "epsilon", "inv_fa_crit", "bracket_lo", "bracket_hi"]
 
 
