@@ -218,8 +218,6 @@ void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
 {
   if (in_flow_force)
     add_source(forms_.load_int, "interaction", {{"w_sum", w_sum}, {"B_sum", B_sum}}, parameters);
-  else if (!forms_.load_int_mobility)
-    throw std::logic_error("model has no interaction term outside w (load_int_mobility)");
   if (!refresh && in_flow_force)
     return;
   ConstantMap constants = constants_;
