@@ -547,7 +547,10 @@ void Simulation::restore_good_state()
     }
   if (step_control_)
     for (const auto& sub : split_)
+    {
       sub->restore(good_.scalars);
+      sub->rewind();
+    }
 }
 
 double Simulation::max_flow_speed() const

@@ -62,6 +62,10 @@ public:
   /// Its checkpointed scalars (keys begin with its name).
   virtual void save(CheckpointData&) const {}
   virtual void restore(const CheckpointData&) {}
+  /// After a rejected step (numerics.adaptive_dt): the registry's fields are back at t^n and
+  /// restore() has run; make what it keeps beside the registry (copies of fields, amounts)
+  /// match them again.
+  virtual void rewind() {}
   /// Estimate of the local time error of its last step (numerics.adaptive_dt), < 0 if it
   /// makes none (or cannot yet: the first step).
   virtual double time_error() const { return -1; }

@@ -33,6 +33,8 @@ PolarGelSubProblem::PolarGelSubProblem(scene::PlanStep step, const scene::Scene&
                 {"kappa", constant(gel_.kappa)},
                 {"activity", constant(gel_.activity)},
                 {"S", constant(gel_.stabilisation)}};
+  if (scene.numerics.adaptive_dt)
+    estimate_.emplace(std::vector<std::string>{"polar.P"});
 }
 
 void PolarGelSubProblem::declare(FieldRegistry& fields)
@@ -43,6 +45,8 @@ void PolarGelSubProblem::declare(FieldRegistry& fields)
   if (scene_.flow)
     fields.declare({"polar.force", "polar_force", name(), FieldSpace::other, Transfer::recompute,
                     false});
+  if (estimate_)
+    estimate_->declare(fields);
 }
 
 void PolarGelSubProblem::set_initial(Function& P) const
@@ -154,6 +158,8 @@ void PolarGelSubProblem::attach(FieldRegistry& fields)
     set_initial(*P_);
   if (fresh_sharp)
     project_sharp();
+  if (estimate_)
+    estimate_->attach(fields);
 
   sharp_to_mixed_ = compat::dofs_in_sub_space(*V, *W_->sub({0}));
   P_to_mixed_ = compat::dofs_in_sub_space(*V, *W_->sub({1}));
@@ -217,6 +223,8 @@ StepTimings PolarGelSubProblem::step(double dt)
     throw std::logic_error("polar_gel: step before connect");
   auto t0 = Clock::now();
   dt_->value[0] = dt;
+  if (estimate_)
+    estimate_->begin_step();
   {
     auto u = u0_->x()->mutable_array();
     auto ps = P_sharp_->x()->array();
@@ -244,6 +252,8 @@ StepTimings PolarGelSubProblem::step(double dt)
       p[d] = x[P_to_mixed_[d]];
     }
   }
+  if (estimate_)
+    time_error_ = estimate_->end_step(dt, comm_);
   last_wall_ = seconds_since(t0);
   return t;
 }
@@ -264,6 +274,18 @@ StepTimings PolarGelSubProblem::finish_step()
   t.assemble = seconds_since(t0);
   last_wall_ += t.assemble;
   return t;
+}
+
+void PolarGelSubProblem::save(CheckpointData& data) const
+{
+  if (estimate_)
+    estimate_->save(data, name() + ".");
+}
+
+void PolarGelSubProblem::restore(const CheckpointData& data)
+{
+  if (estimate_)
+    estimate_->restore(data, name() + ".");
 }
 
 void PolarGelSubProblem::observe(Observation& row)

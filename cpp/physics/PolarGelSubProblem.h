@@ -5,12 +5,14 @@
 // (6.11), that the flow adds at the next step (polar.force); the phase field adds the
 // orientation terms of phi# (6.15) from polar.P.
 #pragma once
+#include "core/ExtrapolationEstimate.h"
 #include "core/SubProblem.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
 #include "solve/L2Projection.h"
 #include "solve/PeriodicSystem.h"
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace cellphase
@@ -28,8 +30,9 @@ public:
   /// P# and the force again from P^{n+1} and phi^{n+1} (see the .cpp).
   StepTimings finish_step() override;
   void observe(Observation& row) override;
-  void save(CheckpointData&) const override {}
-  void restore(const CheckpointData&) override {}
+  void save(CheckpointData& data) const override;
+  void restore(const CheckpointData& data) override;
+  double time_error() const override { return time_error_; }
   std::int64_t num_dofs() const override;
   int factorisations() const override { return factorisations_; }
 
@@ -64,6 +67,10 @@ private:
   int factorisations_ = 0;
   double last_wall_ = 0; ///< wall time of the last step (observables column wall_polar)
   int last_iterations_ = 0;
+
+  // numerics.adaptive_dt: the estimate of the local time error of P
+  std::optional<ExtrapolationEstimate> estimate_;
+  double time_error_ = -1;
 
   // The force on the flow (with a flow)
   std::shared_ptr<Function> force_;

@@ -54,6 +54,13 @@ ReactionDiffusionSubProblem::ReactionDiffusionSubProblem(scene::PlanStep step,
     constants_["D_" + sp.name] = constant(sp.diffusion);
   for (const auto& [name, value] : rd_.kinetics)
     constants_[name] = constant(value);
+  if (scene.numerics.adaptive_dt)
+  {
+    std::vector<std::string> names;
+    for (const auto& sp : rd_.species)
+      names.push_back("rd." + sp.name);
+    estimate_.emplace(names);
+  }
 }
 
 void ReactionDiffusionSubProblem::declare(FieldRegistry& fields)
@@ -64,6 +71,8 @@ void ReactionDiffusionSubProblem::declare(FieldRegistry& fields)
   if (scene::has_protrusion(scene_))
     fields.declare({"rd.force", "protrusion_force", name(), FieldSpace::other,
                     Transfer::recompute, false});
+  if (estimate_)
+    estimate_->declare(fields);
 }
 
 void ReactionDiffusionSubProblem::set_initial(std::size_t i, Function& c) const
@@ -122,6 +131,8 @@ void ReactionDiffusionSubProblem::attach(FieldRegistry& fields)
     species_.push_back(c);
     fields.set(name, c);
   }
+  if (estimate_)
+    estimate_->attach(fields);
   phi_old_ = std::make_shared<Function>(V);
   std::copy(phi_->x()->array().begin(), phi_->x()->array().end(),
             phi_old_->x()->mutable_array().begin());
@@ -231,6 +242,8 @@ StepTimings ReactionDiffusionSubProblem::step(double dt)
   auto t0 = Clock::now();
   dt_->value[0] = dt;
   update_signal(time_ + dt);
+  if (estimate_)
+    estimate_->begin_step();
   {
     auto u = u0_->x()->mutable_array();
     for (std::size_t i = 0; i < species_.size(); ++i)
@@ -254,6 +267,8 @@ StepTimings ReactionDiffusionSubProblem::step(double dt)
     for (std::size_t d = 0; d < to_mixed_[i].size(); ++d)
       c[d] = x[to_mixed_[i][d]];
   }
+  if (estimate_)
+    time_error_ = estimate_->end_step(dt, comm_);
   // phi^{n+1} becomes the old weight of the next step.
   std::copy(phi_->x()->array().begin(), phi_->x()->array().end(),
             phi_old_->x()->mutable_array().begin());
@@ -340,12 +355,25 @@ ReactionDiffusionSubProblem::membrane_extremum(double sign, const std::array<dou
 void ReactionDiffusionSubProblem::save(CheckpointData& data) const
 {
   data.set(name() + ".time", time_);
+  if (estimate_)
+    estimate_->save(data, name() + ".");
 }
 
 void ReactionDiffusionSubProblem::restore(const CheckpointData& data)
 {
   time_ = data.scalar(name() + ".time");
   kept_.clear(); // amounts of the restored mesh, computed at attach
+  if (estimate_)
+    estimate_->restore(data, name() + ".");
+}
+
+void ReactionDiffusionSubProblem::rewind()
+{
+  // phi is phi^n again: the old weight of the repeated step, and the amounts at t^n.
+  std::copy(phi_->x()->array().begin(), phi_->x()->array().end(),
+            phi_old_->x()->mutable_array().begin());
+  kept_ = amounts();
+  time_error_ = -1;
 }
 
 std::int64_t ReactionDiffusionSubProblem::num_dofs() const

@@ -5,6 +5,7 @@
 // protrusion force -(1/Fa) c grad phi (5.7) of the model's protrusion species that the
 // flow adds at the next step (rd.force).
 #pragma once
+#include "core/ExtrapolationEstimate.h"
 #include "core/SubProblem.h"
 #include "physics/FormTable.h"
 #include "scene/Scene.h"
@@ -12,6 +13,7 @@
 #include "solve/PeriodicSystem.h"
 #include <array>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -30,6 +32,8 @@ public:
   void observe(Observation& row) override;
   void save(CheckpointData& data) const override;
   void restore(const CheckpointData& data) override;
+  void rewind() override;
+  double time_error() const override { return time_error_; }
   std::int64_t num_dofs() const override;
   int factorisations() const override { return factorisations_; }
 
@@ -73,6 +77,10 @@ private:
   // Amounts after the last step: a remesh scales the moved species back to them.
   std::vector<double> kept_;
   double time_ = 0; ///< time of the species (checkpointed: the chemotactic signal's clock)
+
+  // numerics.adaptive_dt: the species' own estimate of the local time error
+  std::optional<ExtrapolationEstimate> estimate_;
+  double time_error_ = -1;
 
   // Protrusion force (with a flow and numbers.Fa)
   std::shared_ptr<Function> force_;

@@ -132,6 +132,9 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
       rd.reads.push_back("flow.v");
     if (has_protrusion(s))
       rd.writes.push_back("rd.force");
+    if (s.numerics.adaptive_dt) // the species at the step before: their time-error estimate
+      for (const auto& f : species_fields(s))
+        rd.writes.push_back(f + "_prev");
     steps[rd.name] = rd;
     // The shape and the flow wait while the pattern forms (section 5.4.1).
     for (auto& [name, step] : steps)
@@ -148,6 +151,8 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
       polar.reads.push_back("flow.v");
       polar.writes.push_back("polar.force");
     }
+    if (s.numerics.adaptive_dt) // P at the step before: its time-error estimate
+      polar.writes.push_back("polar.P_prev");
     steps[polar.name] = polar;
     steps.at(groups.front().step).reads.push_back("polar.P");
   }

@@ -109,20 +109,6 @@ void check_coupling(const Section& top, const Scene& s)
                        "numerics.time_scheme: bdf2 (backward Euler drives the flow by phi^n)");
 }
 
-void check_adaptive_dt(const Section& top, const Scene& s)
-{
-  if (!s.numerics.adaptive_dt)
-    return;
-  // A rejected step is repeated from the fields and the checkpointed scalars of the
-  // sub-problems; the species and the orientation field keep state beyond those.
-  const Section n = top.section("numerics");
-  if (s.reaction_diffusion)
-    n.fail("adaptive_dt", "is not available with reaction_diffusion; remove adaptive_dt "
-                          "(fixed step numerics.dt)");
-  if (s.polar_gel)
-    n.fail("adaptive_dt", "is not available with polar_gel; remove adaptive_dt (fixed step "
-                          "numerics.dt)");
-}
 
 void read_numerics(const Section& top, Scene& s)
 {

@@ -71,7 +71,6 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
     read_flow(top, s);
     read_reaction_diffusion(top, s);
     read_polar_gel(top, s);
-    check_adaptive_dt(top, s);
     check_coupling(top, s);
     if (!s.numerics.mesh.refine_inside)
       s.numerics.mesh.refine_inside = s.numerics.mesh.adaptive && s.polar_gel.has_value();

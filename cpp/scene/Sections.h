@@ -12,8 +12,6 @@ void read_boundary(const yaml::Section& top, Scene& s);
 void read_phase_field(const yaml::Section& top, Scene& s);  ///< phase_field
 void read_numbers(const yaml::Section& top, Scene& s);      ///< numbers or units
 void read_numerics(const yaml::Section& top, Scene& s);     ///< numerics
-/// numerics.adaptive_dt against the sub-problems of the scene (after all sections are read)
-void check_adaptive_dt(const yaml::Section& top, const Scene& s);
 /// numerics.coupling needs a flow and time_scheme: bdf2 (after all sections are read)
 void check_coupling(const yaml::Section& top, const Scene& s);
 void read_cells(const yaml::Section& top, Scene& s);        ///< cells (shapes only)

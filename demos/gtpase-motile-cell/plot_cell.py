@@ -6,7 +6,8 @@ RUN_DIR (default output/gtpase-motile-cell) holds observables.csv and fields.xdm
 into RUN_DIR:
   fig-5-4.png      one column per time: the zero level set over c1 (on the membrane band
                    |phi| < 0.9), c2 (the same) and C (in the cell, phi > 0), and |v| with
-                   its direction, as the rows of Fig. 5.4;
+                   its direction, as the rows of Fig. 5.4 (--phi-row adds phi first, as in
+                   Fig. 5.7; --figure names the file); the view fits the cell;
   observables.png  x_cm (5.19), v_cm, circularity (5.20), Helfrich energy, the cell's volume
                    and the GTPase amount (Fig. 5.3) against time.
 """
@@ -44,9 +45,25 @@ def colour_range(values):
     return {"vmin": lo, "vmax": hi}
 
 
-def draw_fields(run_dir, times):
+def view_box(frames):
+    """Half-widths of the view about the cell's centre: the band phi > -0.9 of every frame
+    drawn, with a margin, and at least 1.8 x 1.5 (a cell of radius 1)."""
+    hx, hy = 1.8, 1.5
+    for _, points, _, values in frames:
+        phi = values["phi"]
+        centre = points[phi > 0].mean(axis=0)
+        band = points[phi > -0.9]
+        hx = max(hx, float(np.max(np.abs(band[:, 0] - centre[0]))) + 0.3)
+        hy = max(hy, float(np.max(np.abs(band[:, 1] - centre[1]))) + 0.3)
+    return hx, hy
+
+
+def draw_fields(run_dir, times, figure, phi_row):
     frames = nearest_frames(run_dir, times)
     rows = [("c1", "membrane"), ("c2", "membrane"), ("C", "bulk"), ("|v|", None)]
+    if phi_row:
+        rows.insert(0, ("phi", "everywhere"))
+    hx, hy = view_box(frames)
     fig, axes = plt.subplots(len(rows), len(frames), figsize=(2.6 * len(frames), 2.1 * len(rows)),
                              squeeze=False, constrained_layout=True)
     for j, (time, points, cells, values) in enumerate(frames):
@@ -61,21 +78,22 @@ def draw_fields(run_dir, times):
                 image = ax.tripcolor(tri, speed, shading="gouraud", cmap="viridis",
                                      **colour_range(speed))
                 # Directions on a coarse grid of the view
-                gx, gy = np.meshgrid(np.linspace(centre[0] - 1.6, centre[0] + 1.6, 13),
-                                     np.linspace(centre[1] - 1.3, centre[1] + 1.3, 11))
+                gx, gy = np.meshgrid(np.linspace(centre[0] - hx + 0.2, centre[0] + hx - 0.2, 13),
+                                     np.linspace(centre[1] - hy + 0.2, centre[1] + hy - 0.2, 11))
                 vx = mtri.LinearTriInterpolator(tri, v[:, 0])(gx, gy)
                 vy = mtri.LinearTriInterpolator(tri, v[:, 1])(gx, gy)
                 ax.quiver(gx, gy, vx, vy, color="w", width=0.005)
             else:
                 data = np.array(values[name], dtype=float)
-                outside = np.abs(phi) >= 0.9 if where == "membrane" else phi <= 0
+                outside = {"membrane": np.abs(phi) >= 0.9, "bulk": phi <= 0,
+                           "everywhere": np.zeros(phi.shape, dtype=bool)}[where]
                 hidden = np.all(outside[cells], axis=1)  # triangles entirely outside the region
                 shown = mtri.Triangulation(points[:, 0], points[:, 1], cells, mask=hidden)
                 image = ax.tripcolor(shown, data, shading="gouraud", cmap="magma",
                                      **colour_range(data[~outside]))
             ax.tricontour(tri, phi, levels=[0.0], colors="k", linewidths=0.8)
-            ax.set_xlim(centre[0] - 1.8, centre[0] + 1.8)
-            ax.set_ylim(centre[1] - 1.5, centre[1] + 1.5)
+            ax.set_xlim(centre[0] - hx, centre[0] + hx)
+            ax.set_ylim(centre[1] - hy, centre[1] + hy)
             ax.set_aspect("equal")
             ax.set_xticks([])
             ax.set_yticks([])
@@ -84,7 +102,7 @@ def draw_fields(run_dir, times):
                 ax.set_title(f"t = {time:g}")
             if j == 0:
                 ax.set_ylabel(name)
-    path = run_dir / "fig-5-4.png"
+    path = run_dir / figure
     fig.savefig(path, dpi=110)
     print(f"wrote {path}")
 
@@ -117,11 +135,15 @@ def main():
     parser.add_argument("--times", nargs="+", type=float, default=[0.0, 0.3, 0.6, 1.2, 3.5],
                         help="times of the columns (the nearest output frame is drawn; "
                              "Fig. 5.4 shows 0.013, 0.3, 0.6, 1.2 and 8)")
+    parser.add_argument("--figure", default="fig-5-4.png",
+                        help="file name of the field figure in RUN_DIR (default fig-5-4.png)")
+    parser.add_argument("--phi-row", action="store_true",
+                        help="a first row with the phase field (as Fig. 5.7)")
     args = parser.parse_args()
     if not (args.run_dir / "observables.csv").exists():
         sys.exit(f"{args.run_dir}: no observables.csv (run the scene first)")
     draw_observables(args.run_dir)
-    draw_fields(args.run_dir, args.times)
+    draw_fields(args.run_dir, args.times, args.figure, args.phi_row)
 
 
 if __name__ == "__main__":

@@ -26,7 +26,8 @@ NOT_STATE = {"wall_assembly", "wall_factorise", "wall_solve", "wall_remesh", "wa
              "remesh_volume_change", "wall_flow", "wall_rd", "wall_polar",
              # numerics.solver: reuse counts (a restart starts with a new factorisation)
              "phase_field_factorisations", "phase_field_krylov_iterations",
-             "flow_factorisations", "flow_krylov_iterations"}
+             "flow_factorisations", "flow_krylov_iterations", "rd_factorisations",
+             "rd_krylov_iterations", "polar_factorisations", "polar_krylov_iterations"}
 STEPS = 40
 
 
