@@ -19,7 +19,8 @@ Usage: /usr/bin/python3 benchmarks/polar_critical.py [--epsilons 0.42 0.3] [--br
                                                      [--name NAME] [--report-only]
 
 Epsilons run one after the other; to use both cores, start one process per eps and write the
-joint tables afterwards with --report-only --epsilons 0.42 0.3 (it reuses the members).
+joint tables afterwards with --report-only --epsilons 0.42 0.3 (it reuses the members). The
+committed rows of the epsilons not run are kept in the tables.
 --set changes the scene of every member (e.g. --set "flow.viscosity={inside: 2, outside: 1}"
 for the viscosity study of Fig. 6.12); such members get their own directories, and --name
 gives the results their own file names.
@@ -238,6 +239,17 @@ def write_results(results, members, tol, name, extra):
     plot(results, members, RESULTS / f"{name}.png")
 
 
+def committed_rows(path, epsilons):
+    """Rows of a committed result file for the other epsilons (their members may no longer
+    be on disk): a run for one eps adds to the tables instead of replacing them."""
+    if not path.exists():
+        return []
+    with open(path) as f:
+        rows = [{k: int(v) if k == "members" else float(v) for k, v in row.items()}
+                for row in csv.DictReader(f)]
+    return [r for r in rows if not any(abs(r["epsilon"] - e) < 1e-12 for e in epsilons)]
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--epsilons", type=float, nargs="+", default=[0.42, 0.3])
@@ -276,6 +288,8 @@ def main(argv=None):
               f"{0.5 * (result['bracket_hi'] - result['bracket_lo']):.3f} (zero of the "
               f"growth rate {result['inv_fa_zero_rate']:.3f})", flush=True)
     if results:
+        results += committed_rows(RESULTS / f"{args.name}.csv", args.epsilons)
+        members += committed_rows(RESULTS / f"{args.name}-members.csv", args.epsilons)
         write_results(results, members, args.tolerance, args.name, extra)
         print(f"written: {RESULTS / args.name}.csv, -members.csv, .md, .png")
 
