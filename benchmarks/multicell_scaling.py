@@ -17,6 +17,7 @@ n_cells,dofs_flow,dofs_cells_total,wall_per_step_s,cells_part_s,flow_s,remesh_s,
 import argparse
 import csv
 import math
+import os
 import pathlib
 import statistics
 import subprocess
@@ -25,7 +26,8 @@ import time
 import yaml
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-EXE = ROOT / "build" / "cellphase"
+# $CELLPHASE_EXE runs a copy, so that a rebuild cannot replace the binary under a running study
+EXE = pathlib.Path(os.environ.get("CELLPHASE_EXE", ROOT / "build" / "cellphase"))
 RESULTS = ROOT / "benchmarks" / "results"
 OUT = ROOT / "output" / "benchmarks" / "multicell"
 

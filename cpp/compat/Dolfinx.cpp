@@ -105,6 +105,33 @@ std::shared_ptr<Form> create_form(const ufcx_form& form,
       fem::create_form<T>(form, spaces, coefficients, constants, subdomains, mesh));
 }
 
+std::shared_ptr<Form> restrict_to_cells(const Form& form, std::vector<std::int32_t> cells)
+{
+  using fem::IntegralType;
+  if (form.num_integrals(IntegralType::exterior_facet) > 0
+      || form.num_integrals(IntegralType::interior_facet) > 0)
+    throw std::invalid_argument("restrict_to_cells: the form has facet integrals");
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  // Every cell integral under one tag (0) that marks the cells; 0.5.2 gives the default
+  // integral (-1) all owned cells, so the kernels are re-registered under the tag.
+  std::vector<int> tags(cells.size(), 0);
+  const mesh::MeshTags<int> marked(form.mesh(), form.mesh()->topology().dim(), std::move(cells),
+                                   std::move(tags));
+  using Kernel = std::function<void(T*, const T*, const T*, const double*, const int*,
+                                    const std::uint8_t*)>;
+  std::vector<std::pair<int, Kernel>> kernels;
+  for (int i = 0; i < form.num_integrals(IntegralType::cell); ++i)
+    kernels.emplace_back(0, form.kernel(IntegralType::cell, form.integral_ids(IntegralType::cell)[i]));
+  if (kernels.size() != 1)
+    throw std::invalid_argument("restrict_to_cells: the form needs exactly one cell integral");
+  const std::map<IntegralType, std::pair<std::vector<std::pair<int, Kernel>>,
+                                         const mesh::MeshTags<int>*>>
+      integrals{{IntegralType::cell, {kernels, &marked}}};
+  return std::make_shared<Form>(form.function_spaces(), integrals, form.coefficients(),
+                                form.constants(), form.needs_facet_permutations(), form.mesh());
+}
+
 double assemble_scalar(const Form& form)
 {
   T local = fem::assemble_scalar(form), global = 0;

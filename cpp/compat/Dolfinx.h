@@ -68,6 +68,12 @@ std::shared_ptr<Form> create_form(const ufcx_form& form,
                                   const CoefficientMap& coefficients, const ConstantMap& constants,
                                   std::shared_ptr<const Mesh> mesh = nullptr);
 
+/// The same form (kernels, coefficients, constants) integrated over the given owned cells
+/// only, in increasing order as the whole-mesh assembly visits them: where the form is
+/// exactly zero outside them, the result is the whole-mesh one bit for bit. Cell integrals
+/// only (throws std::invalid_argument otherwise).
+std::shared_ptr<Form> restrict_to_cells(const Form& form, std::vector<std::int32_t> cells);
+
 /// Global value of a rank-0 form.
 double assemble_scalar(const Form& form);
 

@@ -78,6 +78,24 @@ void Resampler::apply(const Function& from, Function& to, double outside) const
   fem::interpolate(to, std::span<const T>(rows), {vs, n}, std::span<const std::int32_t>(cells_));
 }
 
+std::vector<std::int32_t> Resampler::support() const
+{
+  auto V = to_->function_space();
+  const auto& dofmap = *V->dofmap();
+  std::vector<char> written(dofmap.index_map->size_local() + dofmap.index_map->num_ghosts(), 0);
+  for (std::int32_t c : cells_)
+    for (std::int32_t d : dofmap.cell_dofs(c))
+      written[d] = 1;
+  std::vector<std::int32_t> cells;
+  for (std::int32_t c = 0; c < num_owned_cells(*V->mesh()); ++c)
+  {
+    auto dofs = dofmap.cell_dofs(c);
+    if (std::any_of(dofs.begin(), dofs.end(), [&](std::int32_t d) { return written[d] != 0; }))
+      cells.push_back(c);
+  }
+  return cells;
+}
+
 std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const Mesh> patch)
 {
   // Candidates by the patch's local bounding box (cheap), then located in the patch.

@@ -27,6 +27,9 @@ public:
   void apply();
   /// The same points for another pair of fields on the same meshes and spaces.
   void apply(const Function& from, Function& to, double outside) const;
+  /// The owned cells of to's mesh whose values apply() can change: its cells and those
+  /// that share a dof with them. Elsewhere `to` keeps what it held before.
+  std::vector<std::int32_t> support() const;
 
 private:
   std::shared_ptr<const Function> from_;

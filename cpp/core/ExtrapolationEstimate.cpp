@@ -1,4 +1,5 @@
 #include "core/ExtrapolationEstimate.h"
+#include "core/Bdf2.h"
 #include <algorithm>
 #include <cmath>
 
@@ -25,20 +26,10 @@ void ExtrapolationEstimate::attach(FieldRegistry& registry)
   {
     auto u = registry.get(name);
     auto V = std::const_pointer_cast<Space>(u->function_space());
-    auto p = registry.find(name + "_prev");
-    if (!p) // a new run: no u^{n-1} until the first step is done
-    {
-      p = std::make_shared<Function>(V);
+    bool fresh = false;
+    auto p = registry.take(name + "_prev", V, fresh);
+    if (fresh) // a new run: no u^{n-1} until the first step is done
       have_ = false;
-    }
-    else if (p->function_space() != V)
-    {
-      auto copy = std::make_shared<Function>(V);
-      copy->interpolate(*p); // same element and mesh: a copy in V's dof order
-      p = copy;
-    }
-    p->name = registry.info(name + "_prev").label;
-    registry.set(name + "_prev", p);
     now_.push_back(u);
     prev_.push_back(p);
   }
@@ -68,7 +59,7 @@ double ExtrapolationEstimate::end_step(double dt, MPI_Comm comm)
     auto prev = prev_[i]->x()->mutable_array();
     for (std::size_t d = 0; d < owned; ++d)
     {
-      const double extrapolated = (1 + w) * before_[i][d] - w * prev[d];
+      const double extrapolated = extrapolate(before_[i][d], prev[d], w);
       largest[2 * i] = std::max(largest[2 * i], std::abs(now[d] - extrapolated));
       largest[2 * i + 1] = std::max(largest[2 * i + 1], std::abs(now[d]));
     }

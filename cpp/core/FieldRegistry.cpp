@@ -39,6 +39,24 @@ std::shared_ptr<Function> FieldRegistry::find(const std::string& name) const
   return it == functions_.end() ? nullptr : it->second;
 }
 
+std::shared_ptr<Function> FieldRegistry::take(const std::string& name,
+                                              std::shared_ptr<const Space> V, bool& fresh)
+{
+  auto f = find(name);
+  fresh = !f;
+  if (!f)
+    f = std::make_shared<Function>(V);
+  else if (f->function_space() != V)
+  {
+    auto copy = std::make_shared<Function>(V);
+    copy->interpolate(*f); // same element and mesh: a copy in V's dof order
+    f = copy;
+  }
+  f->name = info(name).label;
+  set(name, f);
+  return f;
+}
+
 const FieldInfo& FieldRegistry::info(const std::string& name) const
 {
   auto it = info_.find(name);

@@ -62,6 +62,11 @@ public:
   std::shared_ptr<Function> get(const std::string& name) const;
   /// The field's function, or null if it is undeclared or has none yet.
   std::shared_ptr<Function> find(const std::string& name) const;
+  /// The field's function in V, named by its label and set as the field's function: the
+  /// one moved from the last mesh or restored (copied into V's dof order if it came in
+  /// another space of V's element), or in a new run a zero function of V (`fresh` true).
+  std::shared_ptr<Function> take(const std::string& name, std::shared_ptr<const Space> V,
+                                 bool& fresh);
   bool declared(const std::string& name) const { return info_.count(name) > 0; }
   const FieldInfo& info(const std::string& name) const;
   /// Names in the order of declaration.
@@ -69,7 +74,24 @@ public:
   /// The field whose output label is `label`, or "" if none.
   std::string by_label(const std::string& label) const;
   /// Drop all functions (before a new mesh); declarations stay.
-  void clear_functions() { functions_.clear(); }
+  void clear_functions()
+  {
+    functions_.clear();
+    supports_.clear();
+  }
+  /// The owned cells outside which a field holds its value outside (FieldInfo::outside)
+  /// exactly, on this mesh: a cell's copy on the shared mesh of its field on its own mesh.
+  /// Set by the owner after attach; forms that vanish with the field assemble there only.
+  void set_support(const std::string& name, std::vector<std::int32_t> cells)
+  {
+    supports_[name] = std::move(cells);
+  }
+  /// The field's support, or null: it may differ from its outside value anywhere.
+  const std::vector<std::int32_t>* support(const std::string& name) const
+  {
+    auto it = supports_.find(name);
+    return it == supports_.end() ? nullptr : &it->second;
+  }
 
   /// The meshes the fields live on, by the key of FieldInfo::mesh ("" the shared mesh);
   /// set by the time loop before every attach.
@@ -106,6 +128,7 @@ private:
   std::vector<std::string> order_;
   std::map<std::string, std::shared_ptr<Function>> functions_;
   std::map<std::string, double> scalars_;
+  std::map<std::string, std::vector<std::int32_t>> supports_;
   struct MeshEntry
   {
     std::shared_ptr<Mesh> mesh;

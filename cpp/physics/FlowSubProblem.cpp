@@ -114,10 +114,17 @@ void FlowSubProblem::attach(FieldRegistry& fields)
     ConstantMap c{{"capillary", std::make_shared<const Constant>(scene::flow_capillary(scene_))}};
     force_forms_.clear();
     for (const auto& g : groups_)
-      force_forms_.push_back(compat::create_form(*forms.L, {Vf},
-                                                 {{"phi", fields.get(g.prefix + ".phi")},
-                                                  {"mu", fields.get(g.prefix + ".potential")}},
-                                                 c));
+    {
+      auto L = compat::create_form(*forms.L, {Vf},
+                                   {{"phi", fields.get(g.prefix + ".phi")},
+                                    {"mu", fields.get(g.prefix + ".potential")}},
+                                   c);
+      // A cell on its own mesh: its potential's copy is exactly 0 outside its patch, and
+      // so is mu grad phi; assembled there only, the cost follows the cell, not the mesh.
+      if (const auto* support = fields.support(g.prefix + ".potential"))
+        L = compat::restrict_to_cells(*L, *support);
+      force_forms_.push_back(L);
+    }
     force_projection_ = std::make_unique<L2Projection>(
         *compat::create_form(*forms.a, {Vf, Vf}, {}, {}), comm_, "force_");
     prepare_cell_force(phi_cells);

@@ -92,28 +92,32 @@ void PhaseFieldSubProblem::attach(FieldRegistry& fields)
     auto patch = module_.space()->mesh();
     const auto cells = compat::cells_inside(*fields.mesh(""), patch);
     to_shared_.clear();
-    auto copy = [&](std::shared_ptr<const Function> from, double outside)
+    auto copy = [&](const std::string& name, std::shared_ptr<const Function> from, double outside)
     {
       auto to = std::make_shared<Function>(fields.space("", FieldSpace::scalar_p2));
       to->x()->set(outside);
       to_shared_.push_back(std::make_unique<compat::Resampler>(from, to, cells, outside));
+      to->name = fields.info(name).label;
+      fields.set(name, to);
+      fields.set_support(name, to_shared_.back()->support());
       return to;
     };
-    std::shared_ptr<Function> potential_copy;
+    std::string potential_copy; // the potential's copy if it is one of the module's fields
     for (const auto& [f, u] : module_.fields())
     {
       if (!fields.declared(field(f)))
         continue; // a history field (BDF2): no copy on the shared mesh
-      auto c = copy(u, fields.info(field(f)).outside);
-      c->name = fields.info(field(f)).label;
-      fields.set(field(f), c);
+      copy(field(f), u, fields.info(field(f)).outside);
       if (u == potential)
-        potential_copy = c;
+        potential_copy = field(f);
     }
-    if (potential && !potential_copy)
-      potential_copy = copy(potential, 0);
-    if (potential)
-      fields.set(field("potential"), potential_copy);
+    if (potential && potential_copy.empty())
+      copy(field("potential"), potential, 0);
+    else if (potential) // one copy under two names
+    {
+      fields.set(field("potential"), fields.get(potential_copy));
+      fields.set_support(field("potential"), *fields.support(potential_copy));
+    }
     update_copies();
     patch_volume_ = mesh_volume(module_.space());
     shared_volume_ = mesh_volume(fields.space("", FieldSpace::scalar_p2));

@@ -135,25 +135,9 @@ void PolarGelSubProblem::attach(FieldRegistry& fields)
   auto mesh = phi_->function_space()->mesh();
   auto V = fields.space("", FieldSpace::vector_p2);
   W_ = compat::create_space(forms_.space, "u0", mesh);
-  auto take = [&](const std::string& name, const std::string& label, bool& fresh)
-  {
-    auto f = fields.find(name); // moved from the last mesh or restored; null: a new run
-    fresh = !f;
-    if (!f)
-      f = std::make_shared<Function>(V);
-    else if (f->function_space() != V)
-    {
-      auto copy = std::make_shared<Function>(V);
-      copy->interpolate(*f); // same element and mesh: a copy in V's dof order
-      f = copy;
-    }
-    f->name = label;
-    fields.set(name, f);
-    return f;
-  };
   bool fresh_P = false, fresh_sharp = false;
-  P_ = take("polar.P", "P", fresh_P);
-  P_sharp_ = take("polar.P_sharp", "P_sharp", fresh_sharp);
+  P_ = fields.take("polar.P", V, fresh_P); // moved from the last mesh or restored
+  P_sharp_ = fields.take("polar.P_sharp", V, fresh_sharp);
   if (fresh_P)
     set_initial(*P_);
   if (fresh_sharp)

@@ -115,21 +115,11 @@ void ReactionDiffusionSubProblem::attach(FieldRegistry& fields)
   for (std::size_t i = 0; i < rd_.species.size(); ++i)
   {
     const std::string name = "rd." + rd_.species[i].name;
-    auto c = fields.find(name); // moved from the last mesh or restored; null: a new run
-    if (!c)
-    {
-      c = std::make_shared<Function>(V);
+    bool fresh = false;
+    auto c = fields.take(name, V, fresh); // moved from the last mesh or restored
+    if (fresh)
       set_initial(i, *c);
-    }
-    else if (c->function_space() != V)
-    {
-      auto copy = std::make_shared<Function>(V);
-      copy->interpolate(*c); // same element and mesh: a copy in V's dof order
-      c = copy;
-    }
-    c->name = rd_.species[i].name;
     species_.push_back(c);
-    fields.set(name, c);
   }
   if (estimate_)
     estimate_->attach(fields);

@@ -109,7 +109,6 @@ void check_coupling(const Section& top, const Scene& s)
                        "numerics.time_scheme: bdf2 (backward Euler drives the flow by phi^n)");
 }
 
-
 void read_numerics(const Section& top, Scene& s)
 {
   if (!top.has("numerics"))

@@ -3,13 +3,11 @@ local error is estimated from the extrapolation of phi^n and phi^{n-1}; a step b
 tolerance is rejected and repeated from the saved state with a smaller step, and the next
 step follows the estimate. The relaxing ellipse (L2 Helfrich flow, no flow field) on a fixed
 mesh against a small-step BDF2 reference; a restart continues the step sequence bit for bit."""
-import csv
-import shutil
 
 import pytest
 
 from conftest import circle_scene, run_scene
-from test_checkpoint import assert_same_observables, cellphase, rows, write_scene
+from test_checkpoint import assert_same_observables, run_and_restart
 
 END = 0.05
 REFERENCE_STEPS = 512  # BDF2 at END/512: error ~3e-7, 20x below the tightest run's
@@ -73,18 +71,6 @@ def test_adaptive_restart_continues_the_step_sequence_bit_for_bit(tmp_path):
     steps and step sizes included, are those of the run in one go."""
     scene = relaxing_ellipse(1e-4, tolerance=1e-3)
     scene["numerics"]["mesh"]["remesh_every"] = 3
-    scene["output"] = {"every": 0, "progress": False, "checkpoints": {"every": 4, "keep": 100}}
-    full_dir, part_dir = tmp_path / "full", tmp_path / "part"
-    full = write_scene(scene, tmp_path, full_dir)
-    assert cellphase(["run", full]).returncode == 0
-    shutil.copytree(full_dir, part_dir)
-    for checkpoint in (part_dir / "checkpoints").glob("checkpoint-*.cpk"):
-        if int(checkpoint.stem.split("-")[1]) > 12:
-            checkpoint.unlink()
-    part = write_scene(scene, tmp_path, part_dir)
-    proc = cellphase(["run", part, "--restart", part_dir])
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert "(step 12," in proc.stdout
-    a, b = rows(full_dir), rows(part_dir)
+    a, b = run_and_restart(scene, tmp_path, restart_step=12)
     assert len(a) > 16
     assert_same_observables(a, b)

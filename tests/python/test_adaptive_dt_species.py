@@ -7,13 +7,11 @@ estimates' u^{n-1}, and the species' copy of phi^n (their old transport weights)
 GTPase amount, which only consistent weights keep to round-off, shows it. A restart continues
 the step sequence bit for bit."""
 import copy
-import csv
-import shutil
 
 import pytest
 
 from conftest import run_scene
-from test_checkpoint import assert_same_observables, cellphase, rows, write_scene
+from test_checkpoint import assert_same_observables, run_and_restart
 from test_gtpase import cell_scene
 from test_polar_gel import gel_scene
 
@@ -23,24 +21,6 @@ def adaptive(scene, dt, tolerance):
     scene["numerics"]["dt"] = dt
     scene["numerics"]["adaptive_dt"] = {"tolerance": tolerance}
     return scene
-
-
-def run_and_restart(scene, tmp_path, restart_step):
-    """The scene in one go with checkpoints every 4 steps, then a copy of its output
-    continued from the checkpoint of restart_step (the newer ones removed)."""
-    scene = copy.deepcopy(scene)
-    scene["output"] = {"every": 0, "progress": False, "checkpoints": {"every": 4, "keep": 100}}
-    full_dir, part_dir = tmp_path / "full", tmp_path / "part"
-    proc = cellphase(["run", write_scene(scene, tmp_path, full_dir)])
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    shutil.copytree(full_dir, part_dir)
-    for checkpoint in (part_dir / "checkpoints").glob("checkpoint-*.cpk"):
-        if int(checkpoint.stem.split("-")[1]) > restart_step:
-            checkpoint.unlink()
-    proc = cellphase(["run", write_scene(scene, tmp_path, part_dir), "--restart", part_dir])
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert f"(step {restart_step}," in proc.stdout
-    return rows(full_dir), rows(part_dir)
 
 
 def column(table, key):

@@ -5,8 +5,10 @@ checkpoint must give the observables of the uninterrupted run: bit for bit on th
 number of ranks (the checkpoint holds the mesh, as its refined cells, and every field
 exactly), and to round-off when 2 ranks are restarted on 1 (the LU factorisation sums in
 another order; test_parallel.py measures below 1e-8 relative after 30 steps)."""
+import copy
 import csv
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -70,6 +72,25 @@ def restart_from_shorter_run(full_scene, part_scene, tmp_path):
     proc = cellphase(["run", full, "--restart", part_dir])
     assert proc.returncode == 0, proc.stdout + proc.stderr
     return rows(full_dir), rows(part_dir), proc.stdout
+
+
+def run_and_restart(scene, tmp_path, restart_step):
+    """The scene in one go with checkpoints every 4 steps, then a copy of its output
+    continued from the checkpoint of restart_step (the newer ones removed). Returns the
+    observables' rows of both."""
+    scene = copy.deepcopy(scene)
+    scene["output"] = {"every": 0, "progress": False, "checkpoints": {"every": 4, "keep": 100}}
+    full_dir, part_dir = tmp_path / "full", tmp_path / "part"
+    proc = cellphase(["run", write_scene(scene, tmp_path, full_dir)])
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    shutil.copytree(full_dir, part_dir)
+    for checkpoint in (part_dir / "checkpoints").glob("checkpoint-*.cpk"):
+        if int(checkpoint.stem.split("-")[1]) > restart_step:
+            checkpoint.unlink()
+    proc = cellphase(["run", write_scene(scene, tmp_path, part_dir), "--restart", part_dir])
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert f"(step {restart_step}," in proc.stdout
+    return rows(full_dir), rows(part_dir)
 
 
 def assert_same_observables(a, b, rel=0.0):
