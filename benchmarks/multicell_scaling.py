@@ -62,7 +62,9 @@ def measure(n, steps, meshes):
     path = OUT / f"{meshes}-n{n}.yaml"
     path.write_text(yaml.safe_dump(scene(n, steps, meshes)))
     t0 = time.time()
-    proc = subprocess.run([str(EXE), "run", str(path)], capture_output=True, text=True)
+    # One BLAS thread: more spin in sched_yield on a 2-core machine (40 % of the samples).
+    proc = subprocess.run([str(EXE), "run", str(path)], capture_output=True, text=True,
+                          env={**os.environ, "OMP_NUM_THREADS": "1"})
     if proc.returncode != 0:
         raise SystemExit(f"cellphase failed on {path}:\n{proc.stdout}{proc.stderr}")
     wall = time.time() - t0
@@ -155,7 +157,7 @@ def main():
     fig.tight_layout()
     fig.savefig(RESULTS / "multicell-scaling.png", dpi=120)
     lines = ["# Time per step against the number of cells", "",
-             f"{time.strftime('%Y-%m-%d')}, this machine (2 cores, shared), serial, "
+             f"{time.strftime('%Y-%m-%d')}, this machine (2 cores, shared), serial (one BLAS thread), "
              f"`benchmarks/multicell_scaling.py --cells {' '.join(map(str, a.cells))} --steps {a.steps} "
              f"--shared-up-to {a.shared_up_to}`.",
              "own: each cell's phase field on its own mesh (patch of the base mesh refined around "
