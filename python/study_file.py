@@ -116,17 +116,33 @@ def _member_name(params):
 
 
 def _sweep_members(sweep, where):
+    """The product of the lists. A key naming several scene keys separated by commas varies
+    them together: its values are lists with one value per named key."""
     if not isinstance(sweep, dict) or not sweep:
         raise StudyError(f"{where}sweep: expected a mapping of scene keys to lists of values")
+    groups = []  # (scene keys, list of value tuples)
     for key, values in sweep.items():
         if not isinstance(values, list) or not values:
             raise StudyError(f"{where}sweep.{key}: expected a non-empty list of values")
-    keys = list(sweep)
+        keys = [k.strip() for k in key.split(",")]
+        if len(keys) == 1:
+            groups.append((keys, [(v,) for v in values]))
+            continue
+        if not all(keys):
+            raise StudyError(f"{where}sweep.{key}: an empty scene key between the commas")
+        for v in values:
+            if not isinstance(v, list) or len(v) != len(keys):
+                raise StudyError(f"{where}sweep.{key}: every value must be a list of {len(keys)} "
+                                 f"values, one per key (found {v!r})")
+        groups.append((keys, [tuple(v) for v in values]))
+    all_keys = [k for keys, _ in groups for k in keys]
+    if len(set(all_keys)) != len(all_keys):
+        raise StudyError(f"{where}sweep: a scene key is varied twice ({', '.join(all_keys)})")
     members = []
-    for combo in itertools.product(*(sweep[k] for k in keys)):
-        params = dict(zip(keys, combo))
+    for combo in itertools.product(*(values for _, values in groups)):
+        params = {k: v for (keys, _), values in zip(groups, combo) for k, v in zip(keys, values)}
         members.append(Member(_member_name(params), dict(params), params=params))
-    return members, keys
+    return members, all_keys
 
 
 def load_study(path):

@@ -104,6 +104,8 @@ def write_study(tmp_path, text):
     ("scene: SCENE\noutput: o\n", "exactly one of ladder"),
     ("scene: nowhere.yaml\noutput: o\nsweep: {a: [1]}\n", "nowhere.yaml: no such file"),
     ("scene: SCENE\noutput: o\nsweep: {a: [1]}\nreport: {end: [x]}\n", "unknown key report.end"),
+    ("scene: SCENE\noutput: o\nsweep: {'a, b': [[1, 2], [3]]}\n", "list of 2 values, one per key"),
+    ("scene: SCENE\noutput: o\nsweep: {'a, b': [[1, 2]], a: [4]}\n", "varied twice"),
 ])
 def test_study_file_errors_name_the_key(tmp_path, text, message):
     with pytest.raises(StudyError, match=message.replace("(", r"\(")):
@@ -121,6 +123,20 @@ def test_ladder_rules_scale_resolution_and_dt(tmp_path):
     assert fine.overrides["numerics.dt"] == pytest.approx(0.0016)
     assert coarse.overrides["numerics.end_time"] == 0.1
     assert study.output == tmp_path / "o"
+
+
+def test_keys_joined_by_a_comma_vary_together(tmp_path):
+    """Be and the mobility gamma = 0.01 Be (Table 5.1) change together: 2 x 2 members, not 8."""
+    study = load_study(write_study(tmp_path, (
+        "scene: SCENE\noutput: o\nsweep:\n"
+        "  numbers.Be, phase_field.mobility: [[6.6, 0.066], [66, 0.66]]\n"
+        "  numbers.Ca: [0.264, 1.32]\n")))
+    assert [m.name for m in study.members] == [
+        "Be=6.6_mobility=0.066_Ca=0.264", "Be=6.6_mobility=0.066_Ca=1.32",
+        "Be=66_mobility=0.66_Ca=0.264", "Be=66_mobility=0.66_Ca=1.32"]
+    assert study.members[2].overrides == {"numbers.Be": 66, "phase_field.mobility": 0.66,
+                                          "numbers.Ca": 0.264}
+    assert study.sweep_keys == ["numbers.Be", "phase_field.mobility", "numbers.Ca"]
 
 
 def test_study_cli_rejects_unknown_key_with_exit_2(tmp_path):
