@@ -7,8 +7,11 @@
   benchmarks/studies/gtpase-bending.yaml      b_N (Be, with gamma = 0.01 Be), Fig. 5.5a
 
 Usage: /usr/bin/python3 benchmarks/gtpase_shapes.py STUDY.yaml [--run] [--jobs N]
+                                                     [--with KEY=VALUE:RUN_DIR ...]
 
-With --run the members not yet done are run first (python/study.py run). Writes
+With --run the members not yet done are run first (python/study.py run). --with adds a
+finished member of another study that is the same scene as this sweep at KEY=VALUE (RUN_DIR
+relative to the study file), so that no run is repeated. Writes
 benchmarks/results/gtpase-<parameter>.{csv,md,png}, the csv with the columns
   parameter,value,number,circularity,v_cm,v_peak,x_cm,t_end,steps,wall_time_s
 (value in SI units, number the dimensionless number the scene sets; circularity (5.20),
@@ -18,6 +21,7 @@ so that its centroid is at 0 (Fig. 5.5), and the circularity and speed against t
 parameter (Fig. 5.6).
 """
 import argparse
+import json
 import os
 import subprocess
 import sys
@@ -75,10 +79,28 @@ def centroid(piece):
         / (6 * area)
 
 
-def member_rows(study, key):
+def borrowed(study, key, extra):
+    """Result dicts (as study.collect gives) of the --with members."""
+    results = []
+    for spec in extra:
+        setting, _, run_dir = spec.partition(":")
+        k, _, value = setting.partition("=")
+        if k != key or not run_dir:
+            raise SystemExit(f"--with {spec}: expected {key}=VALUE:RUN_DIR")
+        path = (study.path.parent / run_dir).resolve()
+        done = path / study_runner.DONE
+        if not done.is_file():
+            raise SystemExit(f"--with {spec}: {path} is not a finished member (no {done.name})")
+        results.append({"name": os.path.relpath(path, study.output), "params": {key: value},
+                        "status": "ok", "obs": study_runner.read_observables(path),
+                        "wall": json.loads(done.read_text())["wall"]})
+    return results
+
+
+def member_rows(study, key, extra=()):
     name, _, to_value = PARAMETERS[key]
     rows, shapes, missing = [], [], []
-    for r in study_runner.collect(study):
+    for r in study_runner.collect(study) + borrowed(study, key, extra):
         number = float(r["params"][key])
         if r["status"] != "ok":
             missing.append(f"{key.split('.')[-1]} = {number:g}: {r['status']}")
@@ -137,7 +159,7 @@ def plot(rows, shapes, key, path):
     plt.close(fig)
 
 
-def write_markdown(rows, missing, study, key, path, figure):
+def write_markdown(rows, missing, study, key, path, figure, extra=()):
     name, unit, _ = PARAMETERS[key]
     settings = ", ".join(f"`{k}={v}`" for k, v in study.common.items())
     lines = [f"# The motile GTPase cell against {name} (thesis Figs. 5.5 and 5.6)", "",
@@ -150,6 +172,10 @@ def write_markdown(rows, missing, study, key, path, figure):
         lines.append(f"| {r['value']:.3g} | {r['number']:.4g} | {r['circularity']:.4f} | "
                      f"{r['v_cm']:.4f} | {r['v_peak']:.4f} | {r['x_cm']:.3f} | {r['t_end']:g} "
                      f"| {r['steps']} | {r['wall_time_s']:.0f} |")
+    if extra:
+        lines += ["", "From other studies (the same scene): " + ", ".join(
+            f"{spec.split(':')[0]} is `{os.path.relpath((study.path.parent / spec.partition(':')[2]).resolve(), ROOT)}`"
+            for spec in extra) + "."]
     if missing:
         lines += ["", "Not finished:", ""] + [f"- {m}" for m in missing]
     lines += ["", f"![shapes and speeds]({figure})", ""]
@@ -166,20 +192,22 @@ def main(argv=None):
     p.add_argument("study", help="a sweep study file of benchmarks/studies/")
     p.add_argument("--run", action="store_true", help="run the members not yet done first")
     p.add_argument("--jobs", type=int, default=1, help="members run at once with --run")
+    p.add_argument("--with", dest="extra", action="append", default=[], metavar="KEY=VALUE:RUN_DIR",
+                   help="a finished member of another study, the same scene at KEY=VALUE")
     a = p.parse_args(argv)
     study = load_study(a.study)
     key = swept_number(study)
     if a.run:
         subprocess.run([sys.executable, str(ROOT / "python" / "study.py"), "run", str(a.study),
                         "--jobs", str(a.jobs)], check=False)
-    rows, shapes, missing = member_rows(study, key)
+    rows, shapes, missing = member_rows(study, key, a.extra)
     if not rows:
         raise SystemExit(f"{study.output}: no finished member yet (run with --run)")
     stem = f"gtpase-{PARAMETERS[key][0].lower().replace('_', '')}"
     results = ROOT / "benchmarks" / "results"
     write_csv(results / f"{stem}.csv", COLUMNS, rows)
     plot(rows, shapes, key, results / f"{stem}.png")
-    write_markdown(rows, missing, study, key, results / f"{stem}.md", f"{stem}.png")
+    write_markdown(rows, missing, study, key, results / f"{stem}.md", f"{stem}.png", a.extra)
     print((results / f"{stem}.md").read_text())
 
 
