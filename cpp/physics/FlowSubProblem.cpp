@@ -121,7 +121,9 @@ void FlowSubProblem::attach(FieldRegistry& fields)
                                    c);
       // A cell on its own mesh: its potential's copy is exactly 0 outside its patch, and
       // so is mu grad phi; assembled there only, the cost follows the cell, not the mesh.
-      if (const auto* support = fields.support(g.prefix + ".potential"))
+      const std::string mu = g.prefix + ".potential";
+      if (const auto* support = fields.support(mu);
+          support && fields.declared(mu) && fields.info(mu).outside == 0)
         L = compat::restrict_to_cells(*L, *support);
       force_forms_.push_back(L);
     }
