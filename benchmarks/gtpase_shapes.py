@@ -33,7 +33,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
 from cellphase_results import read_fields, zero_level_set_2d  # noqa: E402
-from results_csv import write_csv  # noqa: E402
+from results_csv import hand_written_notes, write_csv  # noqa: E402
 from study_file import load_study  # noqa: E402
 
 COLUMNS = ["parameter", "value", "number", "circularity", "v_cm", "v_peak", "x_cm", "t_end",
@@ -179,10 +179,9 @@ def write_markdown(rows, missing, study, key, path, figure, extra=()):
     if missing:
         lines += ["", "Not finished:", ""] + [f"- {m}" for m in missing]
     lines += ["", f"![shapes and speeds]({figure})", ""]
-    # The discussion below "## What it shows" is written by hand: kept from the last report.
-    if path.exists() and "## What it shows" in path.read_text():
-        text = path.read_text()
-        lines.append(text[text.index("## What it shows"):])
+    notes = hand_written_notes(path)
+    if notes:
+        lines.append(notes)
     path.write_text("\n".join(lines))
 
 

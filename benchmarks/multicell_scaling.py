@@ -25,6 +25,8 @@ import time
 
 import yaml
 
+from results_csv import hand_written_notes
+
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 # $CELLPHASE_EXE runs a copy, so that a rebuild cannot replace the binary under a running study
 EXE = pathlib.Path(os.environ.get("CELLPHASE_EXE", ROOT / "build" / "cellphase"))
@@ -191,11 +193,9 @@ def main():
               f"Flow share of the step at the largest N: "
               f"{rows[-1]['flow_s'] / rows[-1]['wall_per_step_s']:.0%}.", "",
               "![time per step](multicell-scaling.png)", ""]
-    # The discussion below "## What it shows" is written by hand: kept from the last report.
     report = RESULTS / "multicell-scaling.md"
-    notes = ""
-    if report.exists() and "## What it shows" in report.read_text():
-        notes = "\n" + report.read_text()[report.read_text().index("## What it shows"):]
+    notes = hand_written_notes(report)
+    notes = "\n" + notes if notes else ""
     report.write_text("\n".join(lines) + notes)
     print("\n".join(lines[-6:]))
 

@@ -10,3 +10,15 @@ def write_csv(path, columns, rows):
         for r in rows:
             writer.writerow({k: (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k])
                              for k in columns})
+
+
+NOTES = "## What it shows"
+
+
+def hand_written_notes(report):
+    """The hand-written discussion of a report, from its "## What it shows" heading to the
+    end ("" if the report or the heading is missing): a rerun writes it back unchanged."""
+    if not report.exists() or NOTES not in report.read_text():
+        return ""
+    text = report.read_text()
+    return text[text.index(NOTES):]
