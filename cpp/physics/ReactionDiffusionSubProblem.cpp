@@ -192,36 +192,45 @@ void ReactionDiffusionSubProblem::update_force()
   force_projection_->project(*force_L_, *force_, "the projection of the protrusion force (5.7)");
 }
 
-void ReactionDiffusionSubProblem::update_signal(double t)
+std::array<double, 3> ReactionDiffusionSubProblem::signal_gradient(double t) const
 {
-  if (!rd_.chemotaxis)
-    return;
   using Mode = scene::Chemotaxis::Mode;
   const scene::Chemotaxis& ch = *rd_.chemotaxis;
-  double angle = 0;
-  std::array<double, 3> g{0, 0, 0};
   switch (ch.mode)
   {
   case Mode::rotating: // mode 1: xi (cos wt, sin wt)
-    g = {ch.xi * std::cos(ch.omega * t), ch.xi * std::sin(ch.omega * t), 0};
-    break;
+    return {ch.xi * std::cos(ch.omega * t), ch.xi * std::sin(ch.omega * t), 0};
   case Mode::sinusoidal: // mode 2: xi (1, sin wt)
-    g = {ch.xi, ch.xi * std::sin(ch.omega * t), 0};
-    break;
+    return {ch.xi, ch.xi * std::sin(ch.omega * t), 0};
   case Mode::random_turns: // mode 3: a turn by -w, 0 or w every theta steps
   {
-    angle = ch.direction_deg * std::numbers::pi / 180;
+    double angle = ch.direction_deg * std::numbers::pi / 180;
     const std::int64_t turns = std::int64_t(std::llround(t / scene_.numerics.dt)) / ch.theta;
     for (std::int64_t j = 1; j <= turns; ++j)
       angle += ch.omega * double(std::int64_t(random::mix(rd_.seed ^ random::mix(1000 + j)) % 3) - 1);
-    g = {ch.xi * std::cos(angle), ch.xi * std::sin(angle), 0};
-    break;
+    return {ch.xi * std::cos(angle), ch.xi * std::sin(angle), 0};
   }
   case Mode::point_source: // mode 4: in the form, from x0
     break;
   }
+  return {0, 0, 0};
+}
+
+void ReactionDiffusionSubProblem::update_signal(double t)
+{
+  if (!rd_.chemotaxis)
+    return;
+  const auto g = signal_gradient(t);
   for (int a = 0; a < scene_.domain.dim; ++a)
     chem_dir_->value[a] = g[a];
+}
+
+double ReactionDiffusionSubProblem::signal_angle(const std::array<double, 3>& centre) const
+{
+  auto g = signal_gradient(time_);
+  if (rd_.chemotaxis->mode == scene::Chemotaxis::Mode::point_source) // -xi (x - x0)/|x - x0|
+    g = {rd_.chemotaxis->x0[0] - centre[0], rd_.chemotaxis->x0[1] - centre[1], 0};
+  return std::atan2(g[1], g[0]) * 180 / std::numbers::pi;
 }
 
 StepTimings ReactionDiffusionSubProblem::step(double dt)
@@ -308,6 +317,8 @@ void ReactionDiffusionSubProblem::observe(Observation& row)
     row.extra.push_back({column, value});
     row.extra.push_back({column + "_angle_deg", angle});
   }
+  if (rd_.chemotaxis)
+    row.extra.push_back({"rd_signal_angle_deg", signal_angle(row.values.center)});
 }
 
 std::pair<double, double>

@@ -43,8 +43,12 @@ public:
 private:
   /// The species' initial values (scene, section 5.4.1): constants, a region, or random.
   void set_initial(std::size_t i, Function& c) const;
-  /// grad c~ of (5.21) at time t: the chemotaxis constants of the form.
+  /// grad c~ of (5.21) at time t for the uniform modes 1-3 (0 for the point source).
+  std::array<double, 3> signal_gradient(double t) const;
+  /// Sets the chemotaxis constants of the form to grad c~ at time t.
   void update_signal(double t);
+  /// The direction of grad c~ at `centre` (degrees): where the signal draws the cell.
+  double signal_angle(const std::array<double, 3>& centre) const;
   /// The largest (sign 1) or smallest (sign -1) protrusion species on the membrane and its angle (degrees)
   /// about `centre`.
   std::pair<double, double> membrane_extremum(double sign, const std::array<double, 3>& centre) const;

@@ -231,12 +231,34 @@ def test_a_rotating_signal_turns_the_front_with_it(tmp_path):
                                               "c2": {"initial": 0.2186}, "C": {"initial": 9.25}}
     scene["reaction_diffusion"]["chemotaxis"] = {"mode": "rotating", "xi": 5, "omega": 1.5}
     c = run_scene(scene, tmp_path)
-    for t, angle in zip(c["time"], c["rd_c1_max_angle_deg"]):
+    for t, angle, logged in zip(c["time"], c["rd_c1_max_angle_deg"], c["rd_signal_angle_deg"]):
+        signal = math.degrees(1.5 * t)
+        assert abs(math.remainder(logged - signal, 360)) < 1e-6, f"t = {t}: signal logged at {logged}"
         if t >= 0.1:
-            signal = math.degrees(1.5 * t)
             assert abs(angle - signal) < 10, f"t = {t}: c1 max at {angle:.1f}, signal at {signal:.1f}"
     print(f"t = {c['time'][-1]}: c1 max at {c['rd_c1_max_angle_deg'][-1]:.1f} deg, "
           f"signal at {math.degrees(1.5 * c['time'][-1]):.1f} deg")
+
+
+def test_random_turns_of_the_signal_happen_every_theta_steps_by_plus_minus_omega(tmp_path):
+    # Mode 3 of section 5.4.3: every theta steps the direction of grad c~ turns by -omega, 0
+    # or omega, drawn from the seed; rd_signal_angle_deg logs it.
+    scene = cell_scene(end_time=0.2)
+    scene["reaction_diffusion"]["chemotaxis"] = {"mode": "random_turns", "omega": 30,
+                                                 "theta": 4, "direction": 10}
+    c = run_scene(scene, tmp_path)
+    angles = c["rd_signal_angle_deg"]
+    assert abs(angles[0] - 10) < 1e-9
+    turns = []
+    for step, before, after in zip(c["step"][1:], angles, angles[1:]):
+        turn = math.remainder(after - before, 360)
+        if int(step) % 4:
+            assert abs(turn) < 1e-9, f"step {step}: turned by {turn} between turns"
+        else:
+            assert min(abs(turn - t) for t in (-30, 0, 30)) < 1e-9, f"step {step}: turn {turn}"
+            turns.append(round(turn))
+    print(f"turns every 4 steps: {turns}")
+    assert len(turns) == 10 and len(set(turns)) > 1
 
 
 def test_two_ranks_agree_with_one_with_random_initial_data(tmp_path):
@@ -313,6 +335,7 @@ def test_a_point_source_draws_the_front_towards_it(tmp_path):
           f"{c['rd_c1_min_angle_deg'][-1]:.1f} deg")
     assert abs(angle) > 170
     assert abs(c["rd_c1_min_angle_deg"][-1]) < 10
+    assert abs(abs(c["rd_signal_angle_deg"][-1]) - 180) < 1e-6  # from the centre towards x0
 
 
 def test_the_demo_plot_draws_the_fields_and_observables(tmp_path):
