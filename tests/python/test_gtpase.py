@@ -355,6 +355,23 @@ def test_the_demo_plot_draws_the_fields_and_observables(tmp_path):
         assert image[..., :3].std() > 0.05  # not a blank canvas
 
 
+def test_the_chemotaxis_plot_draws_the_track_and_the_polarity(tmp_path):
+    # demos/gtpase-chemotaxis/plot_chemotaxis.py reads the scene (mode, output directory),
+    # the observables (rd_signal_angle_deg) and phi (XDMF + HDF5), and draws with matplotlib.
+    scene = cell_scene(dt=1e-3, end_time=0.004, frozen=False, flow=True)
+    scene["reaction_diffusion"]["chemotaxis"] = {"mode": "random_turns", "omega": 45, "theta": 2}
+    scene["output"] = {"every": 2, "fields": ["phi"]}
+    run_scene(scene, tmp_path)
+    script = Path(__file__).resolve().parents[2] / "demos" / "gtpase-chemotaxis" / "plot_chemotaxis.py"
+    proc = subprocess.run([sys.executable, str(script), str(tmp_path / "scene.yaml")],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    for name in ["track.png", "polarity.png"]:
+        image = matplotlib.image.imread(tmp_path / "out" / name)
+        assert image.shape[0] > 300 and image.shape[1] > 300
+        assert image[..., :3].std() > 0.05  # not a blank canvas
+
+
 def test_species_solver_options_of_their_own(tmp_path):
     # reaction_diffusion.petsc gives the species' system its own solver (here GMRES with
     # block-Jacobi ILU(0), relative residual 1e-12) while the phase field stays direct.
