@@ -11,10 +11,12 @@
 //   tube_end      x = 0, the open end of the tube (length 2)
 //   wall          every other boundary curve
 //   domain        the surface (cells)
-// Mesh size 0.7 in the chamber (about the 0.75 base of the GTPase demos' rectangles), 0.25 in the
-// tube (8 cells across it, for the flow between cell and wall).
+// Mesh size 0.7 everywhere, about the 0.75 base of the GTPase demos' rectangles: the
+// adaptive refinement makes the cell's surroundings as fine as in those demos (a finer
+// base, e.g. in the tube, would refine the band around the cell further and double the
+// cost); 3 P2 cells across the empty tube carry its parabolic flow.
 
-H = 0.7; h = 0.25;
+H = 0.7; h = 0.7;
 
 Point(1) = {0, -1, 0, h};
 Point(2) = {5, -1, 0, h};
