@@ -10,6 +10,8 @@ SCENE is the run's scene file: its chemotaxis mode and output directory are read
                  at each drawn time an arrow along the signal grad c~ at the centre;
   polarity.png   the angle of the c1 maximum (the cell's front) and of the signal against
                  time, the speed |v_cm| and the circularity (5.20).
+It prints a table of the centre, speed, circularity, front and signal at the drawn times,
+and the largest relative change of the cell's volume and of the GTPase amount.
 The signal's angle is the observable rd_signal_angle_deg; for runs without it, it is
 computed from the scene for the uniform modes 1 and 2.
 """
@@ -120,6 +122,21 @@ def draw_polarity(run_dir, observables, angles):
     print(f"wrote {path}")
 
 
+def print_summary(observables, angles, times):
+    t = np.array(observables["time"])
+    print("| t | x_cm | y_cm | \\|v_cm\\| | circularity | front (c1 max) deg | signal deg |")
+    print("|---|---|---|---|---|---|---|")
+    for wanted in times:
+        i = int(np.argmin(np.abs(t - wanted)))
+        speed = math.hypot(observables["cell_velocity_x"][i], observables["cell_velocity_y"][i])
+        print(f"| {t[i]:g} | {observables['center_x'][i]:.2f} | {observables['center_y'][i]:.2f} "
+              f"| {speed:.2f} | {observables['circularity'][i]:.3f} "
+              f"| {observables['rd_c1_max_angle_deg'][i]:.0f} | {angles[i]:.0f} |")
+    for key, label in [("volume", "cell volume"), ("rd_mass", "GTPase amount")]:
+        y = np.array(observables[key])
+        print(f"{label}: largest relative change {np.max(np.abs(y - y[0])) / abs(y[0]):.1e}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("scene", type=pathlib.Path, help="the run's scene file")
@@ -145,6 +162,7 @@ def main():
     title = f"{args.scene.name}: chemotaxis mode {chemotaxis['mode']}, xi {chemotaxis.get('xi', 5)}"
     draw_track(run_dir, observables, angles, times, title)
     draw_polarity(run_dir, observables, angles)
+    print_summary(observables, angles, times)
 
 
 if __name__ == "__main__":
