@@ -67,6 +67,12 @@ def frames_at(run_dir, times):
     return [unique[t] for t in sorted(unique)]
 
 
+def save(fig, path, dpi):
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    print(f"wrote {path}")
+
+
 def draw_track(run_dir, observables, angles, times, title):
     frames = frames_at(run_dir, times)
     t_obs = np.array(observables["time"])
@@ -91,10 +97,7 @@ def draw_track(run_dir, observables, angles, times, title):
     ax.set_aspect("equal")
     ax.set_title(title + "\n(arrows: the signal grad c~ at the drawn times)", fontsize=10)
     ax.legend(fontsize=8, loc="best")
-    path = run_dir / "track.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    print(f"wrote {path}")
+    save(fig, run_dir / "track.png", dpi=120)
 
 
 def draw_polarity(run_dir, observables, angles):
@@ -116,10 +119,7 @@ def draw_polarity(run_dir, observables, angles):
     for ax in axes:
         ax.set_xlabel("t")
         ax.grid(alpha=0.3)
-    path = run_dir / "polarity.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    print(f"wrote {path}")
+    save(fig, run_dir / "polarity.png", dpi=110)
 
 
 def print_summary(observables, angles, times):
