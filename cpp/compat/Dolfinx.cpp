@@ -1,5 +1,4 @@
 #include "compat/Dolfinx.h"
-#include "compat/Conformity.h"
 #include "compat/PointLocator.h"
 #include "scene/MeshDomain.h"
 #include <dolfinx/geometry/BoundingBoxTree.h>
@@ -79,19 +78,7 @@ std::shared_ptr<Mesh> refine_cells(Mesh& m, const std::vector<std::int32_t>& cel
   auto edges = mesh::compute_incident_entities(m, std::span<const std::int32_t>(cells), tdim, 1);
   // No redistribution: children stay with their parent's rank, so that point evaluation
   // between two refinements of the same base mesh stays rank-local.
-  auto fine = std::make_shared<Mesh>(
-      refinement::refine(m, std::span<const std::int32_t>(edges), false));
-  // DOLFINx 0.5.2's parallel refinement can leave a cell unsplit beside its split
-  // neighbour on another rank (seen with straight-line partitions that cross the refined
-  // band); finite element spaces on such a mesh are not continuous there.
-  if (dolfinx::MPI::size(m.comm()) > 1)
-    if (const std::int64_t n = hanging_vertices(*fine); n > 0)
-      throw std::runtime_error("the refined mesh is not conforming across the MPI ranks ("
-                               + std::to_string(n)
-                               + " hanging vertices on the rank boundary); this partition "
-                                 "of the base mesh cannot be used, run on another number "
-                                 "of ranks");
-  return fine;
+  return std::make_shared<Mesh>(refinement::refine(m, std::span<const std::int32_t>(edges), false));
 }
 
 std::shared_ptr<Mesh> refine_uniform(const Mesh& m)
