@@ -30,6 +30,7 @@ sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
 from study_file import load_study  # noqa: E402
 from study_report import convergence_errors  # noqa: E402
+from results_csv import hand_written_notes  # noqa: E402
 
 QUANTITIES = [("center_x", "err_xcm", "x_cm"), ("cell_velocity_x", "err_vcm", "v_cm"),
               ("circularity", "err_circ", "circularity"), ("helfrich_energy", "err_energy",
@@ -139,8 +140,12 @@ def main():
     lines += cost_split(results)
     plot_members(results, args.results / "gtpase-convergence.png")
     lines += ["", "![the members against time](gtpase-convergence.png)"]
-    (args.results / "gtpase-convergence.md").write_text("\n".join(lines) + "\n")
+    report = args.results / "gtpase-convergence.md"
+    notes = hand_written_notes(report)
     print("\n".join(lines))
+    if notes:
+        lines += ["", notes.rstrip("\n")]
+    report.write_text("\n".join(lines) + "\n")
 
 
 if __name__ == "__main__":
