@@ -154,18 +154,8 @@ int launcher_rank()
 
 int run(const cellphase::scene::Scene& scene, bool restart)
 {
-  int rank, ranks;
+  int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  if (ranks > 1 && scene.numerics.mesh.cell_meshes == cellphase::scene::Mesh::CellMeshes::own)
-  {
-    // DOLFINx 0.5.2's sub-meshes lose the sharing of nodes across ranks (mesh/OwnMesh.h).
-    if (rank == 0)
-      std::fprintf(stderr, "error: %s: numerics.mesh.cell_meshes: own runs on one MPI rank, "
-                           "this run has %d; use cell_meshes: shared on several ranks\n",
-                   scene.source.c_str(), ranks);
-    return 2;
-  }
   int status = 0;
   try
   {

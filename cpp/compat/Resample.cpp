@@ -131,26 +131,4 @@ std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const M
       inside.push_back(candidates[k]);
   return inside;
 }
-
-std::shared_ptr<Mesh> create_patch(const Mesh& base, const Box& box)
-{
-  const int tdim = base.topology().dim();
-  std::vector<std::int32_t> cells;
-  for (std::int32_t c = 0; c < num_owned_cells(base); ++c)
-  {
-    const auto v = cell_vertex_coordinates(base, c);
-    bool meets = true;
-    for (int d = 0; d < 3 && meets; ++d)
-    {
-      double lo = 1e300, hi = -1e300;
-      for (std::size_t i = d; i < v.size(); i += 3)
-        lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
-      meets = hi >= box[d] && lo <= box[3 + d];
-    }
-    if (meets)
-      cells.push_back(c);
-  }
-  auto sub = mesh::create_submesh(base, tdim, std::span<const std::int32_t>(cells));
-  return std::make_shared<Mesh>(std::move(std::get<0>(sub)));
-}
 } // namespace cellphase::compat

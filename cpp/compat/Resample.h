@@ -1,7 +1,7 @@
 // Fields that live on different meshes refined from the same base mesh (a cell's own
 // patch and the flow's mesh, section 7.2): evaluation with a value outside the mesh a
-// field lives on, repeated transfers whose points are located once, and patches of the
-// base mesh. Rank-local like compat::transfer: children stay on their base cell's rank.
+// field lives on, and repeated transfers whose points are located once. Rank-local like
+// compat::transfer: children stay on their base cell's rank (compat/Patch.h).
 #pragma once
 #include "compat/Dolfinx.h"
 #include <array>
@@ -42,7 +42,4 @@ private:
 
 /// Local cells of `mesh` whose midpoint lies in a local cell of `patch`.
 std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const Mesh> patch);
-
-/// The local cells of `base` that meet `box`, as a mesh of their own (no redistribution).
-std::shared_ptr<Mesh> create_patch(const Mesh& base, const Box& box);
 } // namespace cellphase::compat

@@ -2,11 +2,9 @@
 // mesh around the cell's band, grown by a margin, refined around that cell's zero level set
 // only. Its size does not depend on the other cells, so N cells cost N times one cell.
 // Patches are cut from the same base mesh as the shared mesh (no redistribution), so
-// fields move between them rank-locally. One MPI rank only: on several, DOLFINx 0.5.2's
-// create_submesh and the refinement of its result do not keep the sharing of nodes and
-// edges across ranks in every case (tests/python/test_own_meshes.py).
+// fields move between them rank-locally, on any number of MPI ranks (compat/Patch.h).
 #pragma once
-#include "compat/Resample.h"
+#include "compat/Patch.h"
 #include "mesh/AdaptiveMesh.h"
 
 namespace cellphase
