@@ -495,7 +495,10 @@ double Simulation::remesh(double& volume_change)
       auto key = std::pair(old.at(name)->function_space()->mesh().get(), f->function_space().get());
       auto it = patch_transfers.find(key);
       if (it == patch_transfers.end())
-        it = patch_transfers.emplace(key, compat::Resampler(old.at(name), f, {}, info.outside)).first;
+      {
+        const auto cells = compat::local_cells(*f->function_space()->mesh());
+        it = patch_transfers.emplace(key, compat::Resampler(old.at(name), f, cells, info.outside)).first;
+      }
       it->second.apply(*old.at(name), *f, info.outside);
     }
     if (info.transfer == Transfer::keep_integral)

@@ -76,6 +76,9 @@ public:
     return cells;
   }
 
+  /// Distance within which a point counts as in a cell (1e-9 of the part's extent).
+  double round_off() const { return round_off_; }
+
 private:
   const Mesh* mesh_;
   std::vector<std::int32_t> cells_;

@@ -112,11 +112,17 @@ InteractionSubProblem::Samples InteractionSubProblem::sample(std::size_t i, std:
   }
   const auto& x = nodes_[i];
   std::vector<double> pts;
+  // The box's faces pass through nodes, whose coordinates differ in the last bits with the
+  // cell that tabulates them (and so with the number of ranks): pad it by round-off.
+  double pad = 1;
+  for (double c : box_j)
+    pad = std::max(pad, std::abs(c));
+  pad *= 1e-9;
   for (std::size_t k = 0; k < x.size() / 3; ++k)
   {
     bool inside = true;
     for (int d = 0; d < 3 && inside; ++d)
-      inside = x[3 * k + d] >= box_j[d] && x[3 * k + d] <= box_j[3 + d];
+      inside = x[3 * k + d] >= box_j[d] - pad && x[3 * k + d] <= box_j[3 + d] + pad;
     if (inside)
     {
       s.nodes.push_back(std::int32_t(k));

@@ -147,8 +147,8 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
       // v^{n+1} resampled onto this cell's mesh before each of its steps.
       const int dim = module_.space()->mesh()->topology().dim();
       velocity_ = std::make_shared<Function>(create_vector_p2_space(module_.space()->mesh(), dim));
-      velocity_in_ = std::make_unique<compat::Resampler>(fields.get("flow.v"), velocity_,
-                                                         std::vector<std::int32_t>{}, 0.0);
+      velocity_in_ = std::make_unique<compat::Resampler>(
+          fields.get("flow.v"), velocity_, compat::local_cells(*velocity_->function_space()->mesh()), 0.0);
       velocity_in_->apply();
       module_.set_velocity(velocity_);
     }
