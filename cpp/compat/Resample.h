@@ -25,10 +25,10 @@ using Box = std::array<double, 6>;
 PointEvaluator make_evaluator(std::shared_ptr<const Function> u, double outside);
 
 /// to <- from at the interpolation points of the given local cells of to's mesh (none on
-/// a rank whose list is empty; local_cells() for all), repeatedly: the points are located in from's mesh once, at
-/// construction. Points outside from's mesh take `outside`; points outside its local part
-/// but in another rank's take the value there. Scalar or vector fields. Constructing and
-/// applying are collective on from's mesh.
+/// a rank whose list is empty; local_cells() for all), repeatedly: the points are located
+/// in from's mesh once, at construction. Points outside from's mesh take `outside`; points
+/// outside its local part but in another rank's take the value there. Scalar or vector
+/// fields. Constructing and applying are collective on from's mesh.
 class Resampler
 {
 public:
