@@ -64,7 +64,7 @@ def cases():
 
 
 def physics_columns(path):
-    """Rows of observables.csv without the timing columns, as strings (bitwise compare)."""
+    """Rows of observables.csv without the timing columns, as strings."""
     with open(path) as f:
         rows = list(csv.DictReader(f))
     return [{k: v for k, v in r.items() if k not in TIMING} for r in rows]
