@@ -6,6 +6,7 @@
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/geometry/utils.h>
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 namespace cellphase::compat::detail
@@ -27,16 +28,17 @@ public:
       : mesh_(m.get()), cells_(all_local_cells(*m)),
         tree_(*m, m->topology().dim(), cells_, 1e-10)
   {
+    // The box of the local part's nodes (ghosts included), padded by round-off below.
     auto x = m->geometry().x();
+    for (std::size_t i = 0; i < x.size(); i += 3)
+      for (int d = 0; d < 3; ++d)
+        box_[d] = std::min(box_[d], x[i + d]), box_[3 + d] = std::max(box_[3 + d], x[i + d]);
     double extent = 0;
     for (int d = 0; d < 3; ++d)
-    {
-      double lo = 1e300, hi = -1e300;
-      for (std::size_t i = d; i < x.size(); i += 3)
-        lo = std::min(lo, x[i]), hi = std::max(hi, x[i]);
-      extent = std::max(extent, hi - lo);
-    }
+      extent = std::max(extent, box_[3 + d] - box_[d]);
     round_off_ = 1e-9 * extent;
+    for (int d = 0; d < 3; ++d)
+      box_[d] -= round_off_, box_[3 + d] += round_off_;
   }
 
   /// The local cell holding each point (N x 3). Points missed by round-off on cell
@@ -79,11 +81,16 @@ public:
   /// Distance within which a point counts as in a cell (1e-9 of the part's extent).
   double round_off() const { return round_off_; }
 
+  /// Bounding box of the local part (lo x, y, z, hi x, y, z), padded by round_off();
+  /// empty (lo > hi) on a rank without nodes.
+  const std::array<double, 6>& box() const { return box_; }
+
 private:
   const Mesh* mesh_;
   std::vector<std::int32_t> cells_;
   dolfinx::geometry::BoundingBoxTree tree_;
   mutable std::unique_ptr<dolfinx::geometry::BoundingBoxTree> midpoint_tree_;
+  std::array<double, 6> box_{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
   double round_off_;
 };
 } // namespace cellphase::compat::detail

@@ -47,13 +47,7 @@ RemotePoints::RemotePoints(std::shared_ptr<const Mesh> mesh, const PointLocator&
   served_cells_.resize(size);
 
   // Every rank's box of its part of the mesh, padded by the locator's round-off.
-  std::array<double, 6> box{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
-  auto x = mesh->geometry().x();
-  for (std::size_t i = 0; i < x.size(); i += 3)
-    for (int d = 0; d < 3; ++d)
-      box[d] = std::min(box[d], x[i + d]), box[3 + d] = std::max(box[3 + d], x[i + d]);
-  for (int d = 0; d < 3; ++d)
-    box[d] -= locator.round_off(), box[3 + d] += locator.round_off();
+  const std::array<double, 6>& box = locator.box();
   std::vector<double> boxes(6 * size);
   MPI_Allgather(box.data(), 6, MPI_DOUBLE, boxes.data(), 6, MPI_DOUBLE, comm_);
 

@@ -156,11 +156,8 @@ std::vector<std::int32_t> local_cells(const Mesh& mesh) { return detail::all_loc
 std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const Mesh> patch)
 {
   // Candidates by the patch's local bounding box (cheap), then located in the patch.
-  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-  auto px = patch->geometry().x();
-  for (std::size_t i = 0; i < px.size(); i += 3)
-    for (int d = 0; d < 3; ++d)
-      lo[d] = std::min(lo[d], px[i + d]), hi[d] = std::max(hi[d], px[i + d]);
+  const auto locator = locator_of(patch);
+  const std::array<double, 6>& box = locator->box();
   std::vector<std::int32_t> candidates;
   std::vector<double> mid;
   for (std::int32_t c = 0; c < num_owned_cells(mesh); ++c)
@@ -173,7 +170,7 @@ std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const M
     {
       for (std::size_t i = 0; i < nv; ++i)
         m[d] += v[3 * i + d] / double(nv);
-      in_box = in_box && m[d] >= lo[d] && m[d] <= hi[d];
+      in_box = in_box && m[d] >= box[d] && m[d] <= box[3 + d];
     }
     if (in_box)
     {
@@ -181,7 +178,7 @@ std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const M
       mid.insert(mid.end(), m.begin(), m.end());
     }
   }
-  const auto found = locator_of(patch)->locate(mid, true);
+  const auto found = locator->locate(mid, true);
   std::vector<std::int32_t> inside;
   for (std::size_t k = 0; k < candidates.size(); ++k)
     if (found[k] >= 0)
