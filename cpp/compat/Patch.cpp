@@ -1,6 +1,6 @@
 #include "compat/Patch.h"
-#include <dolfinx/la/Vector.h>
-#include <functional>
+#include "compat/AllToAll.h"
+#include <algorithm>
 
 namespace cellphase::compat
 {
@@ -29,67 +29,82 @@ std::vector<std::int32_t> cells_meeting(const Mesh& base, const Box& box)
   return cells;
 }
 
-/// For each owned cell of `base` in the patch: the ranks of its facet neighbours that are
-/// in the patch on another rank. create_mesh needs them (it ghosts cells by facet and
-/// finds the vertices shared between ranks from those ghosts), and the base mesh has no
-/// ghost cells, so each side of a rank boundary tells the other whether its cell is in.
-std::vector<std::vector<int>> neighbour_ranks(Mesh& base, const std::vector<std::int32_t>& cells)
+/// For each of the patch's `cells` (owned cells of `base`): the other ranks with patch
+/// cells at one of its vertices, which must ghost it. create_mesh of DOLFINx 0.5.2 finds
+/// the vertices shared between ranks only where owned and ghost cells meet, so every rank
+/// with patch cells at a vertex needs a ghost cell at it from every other such rank. Facet
+/// neighbours are not enough: at a pinch (patch cells that meet at a vertex only) the
+/// vertex would be made twice. The base mesh has no ghost cells: the owner of each shared
+/// vertex collects the ranks with patch cells there and tells them.
+std::vector<std::vector<int>> vertex_neighbour_ranks(const Mesh& base,
+                                                     std::span<const std::int32_t> cells)
 {
-  const int tdim = base.topology().dim();
-  auto& topology = base.topology_mutable();
-  topology.create_entities(tdim - 1);
-  topology.create_connectivity(tdim, tdim - 1);
-  topology.create_connectivity(tdim - 1, tdim);
-  auto facet_map = topology.index_map(tdim - 1);
-  const auto c2f = topology.connectivity(tdim, tdim - 1);
-  const auto f2c = topology.connectivity(tdim - 1, tdim);
-  const std::int32_t owned = facet_map->size_local();
+  const MPI_Comm comm = base.comm();
+  int size = 1, rank = 0;
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_rank(comm, &rank);
+  const auto c2v = base.topology().connectivity(base.topology().dim(), 0);
+  const auto vertices = base.topology().index_map(0);
+  const std::int32_t owned = vertices->size_local();
+  const std::int64_t first = vertices->local_range()[0];
+  const auto& ghosts = vertices->ghosts();
+  const auto& ghost_owners = vertices->owners();
 
-  std::vector<char> in_patch(num_owned_cells(base), 0);
+  // at[v]: the ranks with patch cells at vertex v (this one included).
+  std::vector<std::vector<int>> at(owned + ghosts.size());
   for (auto c : cells)
-    in_patch[c] = 1;
+    for (auto v : c2v->links(c))
+      if (at[v].empty())
+        at[v].push_back(rank);
 
-  // mine: this side's flag on every facet. theirs: the other side's. Owners get the
-  // ghosts' flags by a reverse scatter, ghosts get the owners' by a forward scatter.
-  la::Vector<double> to_owner(facet_map, 1), to_ghost(facet_map, 1);
-  auto rev = to_owner.mutable_array();
-  auto fwd = to_ghost.mutable_array();
-  std::vector<double> mine(rev.size());
-  for (std::size_t f = 0; f < mine.size(); ++f)
-    mine[f] = f2c->num_links(f) == 1 && in_patch[f2c->links(f)[0]] ? 1.0 : 0.0;
-  std::fill(rev.begin(), rev.end(), 0.0);
-  std::copy(mine.begin() + owned, mine.end(), rev.begin() + owned);
-  to_owner.scatter_rev(std::plus<double>());
-  std::copy(mine.begin(), mine.begin() + owned, fwd.begin());
-  to_ghost.scatter_fwd();
-  auto theirs = [&](std::int32_t f) { return f < owned ? rev[f] : fwd[f]; };
+  // Ghost copies tell their owners, which then know every rank at their vertices.
+  std::vector<std::vector<std::int64_t>> to_owner(size);
+  for (std::size_t i = 0; i < ghosts.size(); ++i)
+    if (!at[owned + i].empty())
+      to_owner[ghost_owners[i]].push_back(ghosts[i]);
+  const auto told = detail::all_to_all(comm, to_owner);
+  for (int r = 0; r < size; ++r)
+    for (auto g : told[r])
+      at[g - first].push_back(r);
 
-  // The rank across each shared facet: the owner of a ghost facet, or the rank that
-  // ghosts an owned one (one rank in both cases: a facet joins two cells).
-  std::vector<int> across(mine.size(), -1);
-  const auto& ghost_owners = facet_map->owners();
-  for (std::size_t i = 0; i < ghost_owners.size(); ++i)
-    across[owned + i] = ghost_owners[i];
-  const auto shared = facet_map->index_to_dest_ranks();
-  for (std::int32_t f = 0; f < owned; ++f)
-    if (shared.num_links(f) > 0)
-      across[f] = shared.links(f)[0];
+  // The owners send (vertex, rank) for every rank at a vertex to the other ranks there.
+  std::vector<std::vector<std::int64_t>> to_sharer(size);
+  for (std::int32_t v = 0; v < owned; ++v)
+    if (at[v].size() > 1)
+      for (int r : at[v])
+        if (r != rank)
+          for (int s : at[v])
+            to_sharer[r].insert(to_sharer[r].end(), {first + v, std::int64_t(s)});
+  const auto back = detail::all_to_all(comm, to_sharer);
+  std::vector<std::int64_t> global;
+  std::vector<int> from;
+  for (int r = 0; r < size; ++r)
+    for (std::size_t k = 0; k < back[r].size(); k += 2)
+      global.push_back(back[r][k]), from.push_back(int(back[r][k + 1]));
+  std::vector<std::int32_t> local(global.size());
+  vertices->global_to_local(global, local);
+  for (std::size_t k = 0; k < global.size(); ++k)
+    if (std::find(at[local[k]].begin(), at[local[k]].end(), from[k]) == at[local[k]].end())
+      at[local[k]].push_back(from[k]);
 
   std::vector<std::vector<int>> ranks(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i)
-    for (auto f : c2f->links(cells[i]))
-      if (across[f] >= 0 && theirs(f) > 0.5
-          && std::find(ranks[i].begin(), ranks[i].end(), across[f]) == ranks[i].end())
-        ranks[i].push_back(across[f]);
+    for (auto v : c2v->links(cells[i]))
+      for (int r : at[v])
+        if (r != rank && std::find(ranks[i].begin(), ranks[i].end(), r) == ranks[i].end())
+          ranks[i].push_back(r);
   return ranks;
 }
 } // namespace
 
-std::shared_ptr<Mesh> create_patch(const Mesh& base_in, const Box& box)
+std::shared_ptr<Mesh> create_patch(const Mesh& base, const Box& box)
 {
-  auto& base = const_cast<Mesh&>(base_in); // only connectivity is added
-  const std::vector<std::int32_t> cells = cells_meeting(base, box);
-  const auto ranks = neighbour_ranks(base, cells);
+  return create_patch(base, cells_meeting(base, box));
+}
+
+std::shared_ptr<Mesh> create_patch(const Mesh& base, std::span<const std::int32_t> cells)
+{
+  const auto ranks = vertex_neighbour_ranks(base, cells);
   int rank = 0;
   MPI_Comm_rank(base.comm(), &rank);
 
@@ -116,7 +131,7 @@ std::shared_ptr<Mesh> create_patch(const Mesh& base_in, const Box& box)
       x[gdim * i + d] = geometry.x()[3 * i + d];
 
   // Every cell stays on this rank (fields move between meshes rank-locally), ghosted on
-  // the ranks of its neighbours in the patch.
+  // the ranks with patch cells at its vertices.
   mesh::CellPartitionFunction keep_rank
       = [&](MPI_Comm, int, int, const graph::AdjacencyList<std::int64_t>& c, mesh::GhostMode)
   {

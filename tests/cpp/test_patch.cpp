@@ -1,0 +1,102 @@
+// compat::create_patch on any number of ranks: a patch is the base mesh's cells as a mesh
+// of their own, with every node once, however the base is partitioned. Run on 1 and on 2
+// ranks (test_patch_mpi2), where the partition below puts a pinch on the rank boundary.
+#include "compat/Patch.h"
+#include "mpi_main.h"
+#include <basix/finite-element.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/mesh/generation.h>
+#include <numeric>
+#include <cmath>
+
+using namespace cellphase;
+using namespace dolfinx;
+
+namespace
+{
+constexpr std::size_t n = 2; // the unit square in 2 x 2 squares of two triangles
+
+/// Cells whose vertices (P1 node numbers iy (n + 1) + ix of create_rectangle's input)
+/// all lie in the bottom-left square go to rank 0, the others to the last rank. Every cell
+/// is ghosted on every other rank, from which create_mesh finds the shared vertices (the
+/// base mesh keeps no ghost cells).
+graph::AdjacencyList<std::int32_t> bottom_left_on_rank_0(MPI_Comm, int parts, int,
+                                                        const graph::AdjacencyList<std::int64_t>& cells,
+                                                        mesh::GhostMode)
+{
+  std::vector<std::int32_t> dest, offsets{0};
+  for (std::int32_t c = 0; c < cells.num_nodes(); ++c)
+  {
+    bool bottom_left = true;
+    for (auto v : cells.links(c))
+      bottom_left = bottom_left && std::size_t(v) % (n + 1) <= n / 2 && std::size_t(v) / (n + 1) <= n / 2;
+    const int owner = bottom_left ? 0 : parts - 1;
+    dest.push_back(owner);
+    for (int r = 0; r < parts; ++r)
+      if (r != owner)
+        dest.push_back(r);
+    offsets.push_back(std::int32_t(dest.size()));
+  }
+  return graph::AdjacencyList<std::int32_t>(std::move(dest), std::move(offsets));
+}
+
+/// The owned cells of `mesh` that have the node `at` and lie in the quadrant of their
+/// midpoint's sign pattern `sx`, `sy` about it.
+std::vector<std::int32_t> cells_at(const Mesh& mesh, std::array<double, 2> at, int sx, int sy)
+{
+  std::vector<std::int32_t> cells;
+  for (std::int32_t c = 0; c < compat::num_owned_cells(mesh); ++c)
+  {
+    const auto x = compat::cell_vertex_coordinates(mesh, c);
+    bool has = false;
+    double mx = 0, my = 0;
+    for (std::size_t i = 0; i < x.size(); i += 3)
+    {
+      has = has || (std::abs(x[i] - at[0]) < 1e-12 && std::abs(x[i + 1] - at[1]) < 1e-12);
+      mx += x[i] / 3, my += x[i + 1] / 3;
+    }
+    if (has && (mx - at[0]) * sx > 0 && (my - at[1]) * sy > 0)
+      cells.push_back(c);
+  }
+  return cells;
+}
+
+std::int64_t global_vertices(const Mesh& m)
+{
+  return m.topology().index_map(0)->size_global();
+}
+} // namespace
+
+// Two cells of the bottom-left square and two of the top-right one: the pairs meet at the
+// centre only. On 2 ranks the pairs lie on different ranks, and the centre must still be
+// one node (7 in all), or the patch would be cut in two there.
+TEST(Patch, CellsMeetingAtAVertexOnlyShareIt)
+{
+  auto base = std::make_shared<Mesh>(mesh::create_rectangle(
+      MPI_COMM_WORLD, {{{0, 0}, {1, 1}}}, {n, n}, mesh::CellType::triangle,
+      mesh::GhostMode::none, bottom_left_on_rank_0));
+  auto cells = cells_at(*base, {0.5, 0.5}, -1, -1);
+  const auto top_right = cells_at(*base, {0.5, 0.5}, 1, 1);
+  cells.insert(cells.end(), top_right.begin(), top_right.end());
+  auto patch = compat::create_patch(*base, cells);
+  EXPECT_EQ(patch->topology().index_map(2)->size_global(), 4);
+  EXPECT_EQ(global_vertices(*patch), 7);
+  // P1 on the patch: one dof per node, so a field is continuous through the pinch.
+  auto p1 = basix::create_element(basix::element::family::P, basix::cell::type::triangle, 1,
+                                  basix::element::lagrange_variant::equispaced, false);
+  auto space = fem::create_functionspace(patch, p1, 1);
+  EXPECT_EQ(space.dofmap()->index_map->size_global(), 7);
+}
+
+// The whole base mesh as a patch has the base's nodes (on any partition).
+TEST(Patch, AllCellsGiveTheBaseMesh)
+{
+  auto base = std::make_shared<Mesh>(mesh::create_rectangle(
+      MPI_COMM_WORLD, {{{0, 0}, {1, 1}}}, {n, n}, mesh::CellType::triangle,
+      mesh::GhostMode::none, bottom_left_on_rank_0));
+  std::vector<std::int32_t> all(compat::num_owned_cells(*base));
+  std::iota(all.begin(), all.end(), 0);
+  auto patch = compat::create_patch(*base, all);
+  EXPECT_EQ(global_vertices(*patch), global_vertices(*base));
+  EXPECT_EQ(patch->topology().index_map(2)->size_global(), 8);
+}
