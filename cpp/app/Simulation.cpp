@@ -5,6 +5,7 @@
 #include "io/FieldSnapshot.h"
 #include "io/Progress.h"
 #include "compat/Resample.h"
+#include "mesh/BaseMesh.h"
 #include "mesh/FieldTransfer.h"
 #include "physics/PhaseFieldSubProblem.h"
 #include "scene/Check.h"
@@ -357,11 +358,20 @@ void Simulation::open_output(const LoopState& start)
     if (auto* pf = dynamic_cast<const PhaseFieldSubProblem*>(sub.get()))
       threads = std::max(threads, pf->threads());
   }
-  log("cellphase: %s, %dD, model %s (%s), %d refinement levels, %lld dofs, %d MPI rank%s, "
+  char partition[96] = ""; // how the ranks split the meshes (mesh/BaseMesh)
+  if (ranks > 1)
+  {
+    if (scene_.numerics.mesh.partition_or_default() == scene::Mesh::Partition::stripes)
+      std::snprintf(partition, sizeof partition, " (stripes %g wide across %c)",
+                    stripe_width(scene_), "xyz"[stripe_axis(scene_.domain)]);
+    else
+      std::snprintf(partition, sizeof partition, " (graph partition)");
+  }
+  log("cellphase: %s, %dD, model %s (%s), %d refinement levels, %lld dofs, %d MPI rank%s%s, "
       "%d assembly thread%s per rank\n",
       scene_.source.c_str(), scene_.domain.dim, scene::to_string(scene_.phase_field.model),
       scene::to_string(scene_.numerics.linearisation), adaptive_.levels(), (long long)dofs,
-      ranks, ranks > 1 ? "s" : "", threads, threads > 1 ? "s" : "");
+      ranks, ranks > 1 ? "s" : "", partition, threads, threads > 1 ? "s" : "");
 }
 
 void Simulation::make_writers(const LoopState& start)

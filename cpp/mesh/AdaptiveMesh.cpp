@@ -1,4 +1,5 @@
 #include "mesh/AdaptiveMesh.h"
+#include "mesh/BaseMesh.h"
 #include "mesh/PointLookup.h"
 #include "scene/Resolution.h"
 #include <cmath>
@@ -7,7 +8,7 @@
 namespace cellphase
 {
 AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, MPI_Comm comm)
-    : AdaptiveMesh(scene, compat::create_base_mesh(comm, scene.domain))
+    : AdaptiveMesh(scene, create_partitioned_base_mesh(scene, comm))
 {
 }
 

@@ -1,3 +1,4 @@
+#include "scene/Resolution.h"
 #include "scene/Sections.h"
 #include <cmath>
 
@@ -10,7 +11,8 @@ namespace
 void read_mesh(const Section& m, Mesh& mesh)
 {
   m.allow_only({"adaptive", "remesh_every", "points_across_interface", "refine_threshold",
-                "refine_inside", "max_levels", "cell_meshes", "own_margin"});
+                "refine_inside", "max_levels", "cell_meshes", "own_margin", "partition",
+                "stripe_width"});
   mesh.adaptive = m.boolean("adaptive", mesh.adaptive);
   if (!mesh.adaptive)
   {
@@ -35,6 +37,17 @@ void read_mesh(const Section& m, Mesh& mesh)
       {{"shared", Mesh::CellMeshes::shared}, {"own", Mesh::CellMeshes::own}});
   if (m.has("own_margin"))
     mesh.own_margin = m.number("own_margin", positive());
+  if (m.has("partition"))
+    mesh.partition = m.choice<Mesh::Partition>(
+        "partition", Mesh::Partition::graph,
+        {{"graph", Mesh::Partition::graph}, {"stripes", Mesh::Partition::stripes}});
+  if (m.has("stripe_width"))
+  {
+    mesh.stripe_width = m.number("stripe_width", positive());
+    if (mesh.partition_or_default() != Mesh::Partition::stripes)
+      m.fail("stripe_width", "is only used with partition: stripes (the partition here is "
+                             "graph); remove it or set partition: stripes");
+  }
 }
 
 /// numerics.stop_when_settled; the observable is checked against the run's columns when
@@ -139,6 +152,11 @@ void read_numerics(const Section& top, Scene& s)
                             "gamma W(phi^n) (phase_field.mobility_law) changes it every step; "
                             "use taylor");
   read_mesh(n.section("mesh"), num.mesh);
+  if (num.mesh.stripe_width && *num.mesh.stripe_width < base_cell_size(s.domain))
+    n.section("mesh").fail("stripe_width",
+                           "found " + fmt(*num.mesh.stripe_width) + ", expected at least the base "
+                           "cell size " + fmt(base_cell_size(s.domain))
+                           + " (narrower stripes scatter single cells among the ranks)");
   if (num.mesh.cell_meshes == Mesh::CellMeshes::own)
   {
     const Section m = n.section("mesh");

@@ -169,6 +169,17 @@ struct Mesh
   /// Own meshes: distance kept between the cell's band (phi > -0.9) and the edge of its
   /// patch, so that the cell may move that far between two remeshes; default 8 epsilon.
   std::optional<double> own_margin;
+  /// How the base mesh (and every mesh refined from it) is split among MPI ranks: by
+  /// DOLFINx's graph partitioner, or in stripes across the domain's longest axis, dealt
+  /// to the ranks in turn, so that each cell's patch is shared by all ranks. Absent:
+  /// stripes with own meshes, else graph.
+  enum class Partition { graph, stripes };
+  std::optional<Partition> partition;
+  std::optional<double> stripe_width; ///< absent: 2 base cell sizes
+  Partition partition_or_default() const
+  {
+    return partition.value_or(cell_meshes == CellMeshes::own ? Partition::stripes : Partition::graph);
+  }
 };
 
 /// Bounds beyond which a run counts as failed numerically and stops (section "limits").

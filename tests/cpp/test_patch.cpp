@@ -100,3 +100,44 @@ TEST(Patch, AllCellsGiveTheBaseMesh)
   EXPECT_EQ(global_vertices(*patch), global_vertices(*base));
   EXPECT_EQ(patch->topology().index_map(2)->size_global(), 8);
 }
+
+// redistribute deals the owned cells to the given ranks and keeps the mesh: its cells,
+// its nodes (shared across the new rank boundary) and their coordinates.
+TEST(Patch, RedistributeMovesCellsToTheirRanks)
+{
+  auto base = std::make_shared<Mesh>(mesh::create_rectangle(
+      MPI_COMM_WORLD, {{{0, 0}, {1, 1}}}, {n, n}, mesh::CellType::triangle,
+      mesh::GhostMode::none, bottom_left_on_rank_0));
+  int size = 1, rank = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  // The cells of the left half to the last rank, the others to rank 0.
+  auto left = [](const Mesh& m, std::int32_t c)
+  {
+    const auto x = compat::cell_vertex_coordinates(m, c);
+    return (x[0] + x[3] + x[6]) / 3 < 0.5;
+  };
+  std::vector<int> dest(compat::num_owned_cells(*base));
+  for (std::int32_t c = 0; c < std::int32_t(dest.size()); ++c)
+    dest[c] = left(*base, c) ? size - 1 : 0;
+  auto moved = compat::redistribute(*base, dest);
+  for (std::int32_t c = 0; c < compat::num_owned_cells(*moved); ++c)
+    EXPECT_EQ(left(*moved, c) ? size - 1 : 0, rank);
+  EXPECT_EQ(moved->topology().index_map(2)->size_global(), 8);
+  EXPECT_EQ(global_vertices(*moved), 9);
+  // The same cells: the sums of their midpoints' coordinates over all ranks agree.
+  auto midpoint_sum = [](const Mesh& m)
+  {
+    std::array<double, 2> s{0, 0};
+    for (std::int32_t c = 0; c < compat::num_owned_cells(m); ++c)
+    {
+      const auto x = compat::cell_vertex_coordinates(m, c);
+      s[0] += (x[0] + x[3] + x[6]) / 3, s[1] += (x[1] + x[4] + x[7]) / 3;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, s.data(), 2, MPI_DOUBLE, MPI_SUM, m.comm());
+    return s;
+  };
+  const auto before = midpoint_sum(*base), after = midpoint_sum(*moved);
+  EXPECT_NEAR(after[0], before[0], 1e-14);
+  EXPECT_NEAR(after[1], before[1], 1e-14);
+}

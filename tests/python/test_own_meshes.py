@@ -160,16 +160,20 @@ def assert_close(a, b, what, rel=1e-9):
         assert diff < bound, f"{k}: {what} differs by {diff:.1e}"
 
 
-def test_patches_that_meet_on_a_rank_boundary_give_the_one_rank_result(tmp_path):
-    """The two cells of demos/cell-collision, 12 steps. The patches meet along a line and
-    DOLFINx's partitioner (random from run to run) often cuts them there: a node at one
-    patch's edge then lies on a rank that holds none of the other patch's cells beside it.
-    Measured before compat/RemotePoints and the owners' share of a copy's writes: 1e-8 apart
-    from step 7 in two of three runs; with them 1e-11 in every run. The same scene also
-    keeps 1e-11 on the shared mesh up to contact (step 31), where both go to 1e-6 as the
-    parallel direct solve pivots in another order."""
+@pytest.mark.parametrize("partition", ["stripes", "graph"])
+def test_patches_that_meet_on_a_rank_boundary_give_the_one_rank_result(tmp_path, partition):
+    """The two cells of demos/cell-collision, 12 steps, on two ranks split in stripes (the
+    default with own meshes, mesh/BaseMesh: every patch crosses several rank boundaries)
+    and by DOLFINx's graph partitioner (random from run to run; it often cuts the patches
+    where they meet). A node at one patch's edge then lies on a rank that holds none of the
+    other patch's cells beside it. Measured with the graph partition before
+    compat/RemotePoints and the owners' share of a copy's writes: 1e-8 apart from step 7 in
+    two of three runs; with them 1e-11 in every run, and 5e-10 (lambda_area) in stripes.
+    The same scene also keeps 1e-11 on the shared mesh up to contact (step 31), where both
+    go to 1e-6 as the parallel direct solve pivots in another order."""
     scene = yaml.safe_load((REPO / "demos" / "cell-collision" / "scene.yaml").read_text())
     scene["numerics"]["end_time"] = 12 * scene["numerics"]["dt"]
+    scene["numerics"]["mesh"]["partition"] = partition
     scene["output"] = {}
     runs = {}
     for ranks in (1, 2):
@@ -198,6 +202,9 @@ def test_a_cell_that_leaves_its_patch_stops_with_a_message(tmp_path):
     (lambda s: s["numerics"]["mesh"].update(own_margin=0.05), "own_margin"),
     (lambda s: s["phase_field"].update(model="allen_cahn_volume"), "allen_cahn_volume"),
     (lambda s: s["numerics"]["mesh"].update(cell_meshes="private"), "cell_meshes"),
+    (lambda s: s["numerics"]["mesh"].update(partition="slices"), "partition"),
+    (lambda s: s["numerics"]["mesh"].update(stripe_width=0.01), "stripe_width"),
+    (lambda s: s["numerics"]["mesh"].update(partition="graph", stripe_width=0.5), "stripe_width"),
 ])
 def test_bad_own_mesh_input_stops_before_the_first_step(tmp_path, change, message):
     scene = with_mesh(TWO, cell_meshes="own")
