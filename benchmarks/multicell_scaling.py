@@ -34,7 +34,11 @@ RESULTS = ROOT / "benchmarks" / "results"
 OUT = ROOT / "output" / "benchmarks" / "multicell"
 
 
-def scene(n, steps, meshes):
+def run_name(n, meshes, ranks=1, partition=None):
+    return f"{meshes}-n{n}" + (f"-{ranks}ranks-{partition}" if ranks > 1 else "")
+
+
+def scene(n, steps, meshes, ranks=1, partition=None):
     side = math.ceil(math.sqrt(n))
     rows = math.ceil(n / side)
     spacing = 0.8
@@ -52,25 +56,35 @@ def scene(n, steps, meshes):
         "numerics": {"epsilon": 0.04, "dt": 5e-3, "end_time": steps * 5e-3,
                      "mesh": {"remesh_every": 3, "points_across_interface": 4,
                               "cell_meshes": meshes}},
-        "output": {"directory": str(OUT / f"{meshes}-n{n}"), "every": 0, "progress": False},
+        "output": {"directory": str(OUT / run_name(n, meshes, ranks, partition)), "every": 0,
+                   "progress": False},
     }
+    if partition:
+        s["numerics"]["mesh"]["partition"] = partition
     if n == 1:
         del s["interaction"]  # nothing to interact with
     return s
 
 
-def measure(n, steps, meshes):
+def measure(n, steps, meshes, ranks=1, partition=None):
+    """Run the N-cell scene (on `ranks` MPI ranks, the meshes split by `partition` or the
+    default) and return its sizes and median timings per step."""
     OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / f"{meshes}-n{n}.yaml"
-    path.write_text(yaml.safe_dump(scene(n, steps, meshes)))
+    name = run_name(n, meshes, ranks, partition)
+    path = OUT / f"{name}.yaml"
+    path.write_text(yaml.safe_dump(scene(n, steps, meshes, ranks, partition)))
+    args = [str(EXE), "run", str(path)]
+    if ranks > 1:
+        root = ["--allow-run-as-root"] if os.geteuid() == 0 else []
+        args = ["mpirun", *root, "-x", "OMP_NUM_THREADS", "-n", str(ranks)] + args
     t0 = time.time()
     # One BLAS thread: more spin in sched_yield on a 2-core machine (40 % of the samples).
-    proc = subprocess.run([str(EXE), "run", str(path)], capture_output=True, text=True,
+    proc = subprocess.run(args, capture_output=True, text=True,
                           env={**os.environ, "OMP_NUM_THREADS": "1"})
     if proc.returncode != 0:
         raise SystemExit(f"cellphase failed on {path}:\n{proc.stdout}{proc.stderr}")
     wall = time.time() - t0
-    with open(OUT / f"{meshes}-n{n}" / "observables.csv") as f:
+    with open(OUT / name / "observables.csv") as f:
         every_row = list(csv.DictReader(f))
     rows = every_row[2:]  # steps 2.. (step 1 builds the solvers)
     col = lambda k: [float(r[k]) for r in rows]  # noqa: E731
