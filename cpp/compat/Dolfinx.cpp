@@ -361,6 +361,17 @@ std::vector<double> cell_vertex_coordinates(const Mesh& m, std::int32_t cell)
   return out;
 }
 
+std::array<double, 3> cell_centroid(const Mesh& m, std::int32_t cell)
+{
+  const auto v = cell_vertex_coordinates(m, cell);
+  const std::size_t nv = v.size() / 3;
+  std::array<double, 3> c{0, 0, 0};
+  for (std::size_t i = 0; i < nv; ++i)
+    for (int d = 0; d < 3; ++d)
+      c[d] += v[3 * i + d] / double(nv);
+  return c;
+}
+
 std::int32_t num_owned_cells(const Mesh& m)
 {
   return m.topology().index_map(m.topology().dim())->size_local();

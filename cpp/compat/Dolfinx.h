@@ -6,6 +6,7 @@
 #include <dolfinx.h>
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/la/petsc.h>
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -150,6 +151,9 @@ std::array<std::array<double, 3>, 2> bounding_box(const Mesh& mesh);
 
 /// Coordinates (N x 3) of the vertices of each local cell, cell after cell.
 std::vector<double> cell_vertex_coordinates(const Mesh& mesh, std::int32_t cell);
+
+/// Mean of a local cell's vertices (the same bits on any number of ranks).
+std::array<double, 3> cell_centroid(const Mesh& mesh, std::int32_t cell);
 
 /// Number of locally owned cells.
 std::int32_t num_owned_cells(const Mesh& mesh);

@@ -21,20 +21,6 @@ AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base
 {
 }
 
-namespace
-{
-std::array<double, 3> centroid(const Mesh& mesh, std::int32_t cell)
-{
-  const auto v = compat::cell_vertex_coordinates(mesh, cell);
-  const std::size_t nv = v.size() / 3;
-  std::array<double, 3> c{0, 0, 0};
-  for (std::size_t i = 0; i < nv; ++i)
-    for (int d = 0; d < 3; ++d)
-      c[d] += v[3 * i + d] / double(nv);
-  return c;
-}
-} // namespace
-
 std::shared_ptr<Mesh> AdaptiveMesh::build(const PointEvaluator& phi)
 {
   auto mesh = base_;
@@ -44,7 +30,7 @@ std::shared_ptr<Mesh> AdaptiveMesh::build(const PointEvaluator& phi)
   {
     const auto marked = mark(*mesh, phi, h);
     for (std::int32_t c : marked)
-      for (double x : centroid(*mesh, c))
+      for (double x : compat::cell_centroid(*mesh, c))
         history_[level].push_back(x);
     mesh = compat::refine_cells(*mesh, marked);
   }
@@ -67,7 +53,7 @@ std::shared_ptr<Mesh> AdaptiveMesh::replay(const std::vector<std::vector<double>
     std::vector<std::int32_t> marked;
     for (std::int32_t c = 0; c < compat::num_owned_cells(*mesh); ++c)
     {
-      const auto x = centroid(*mesh, c);
+      const auto x = compat::cell_centroid(*mesh, c);
       if (refined.find(x.data()) >= 0)
       {
         marked.push_back(c);

@@ -32,11 +32,7 @@ std::shared_ptr<Mesh> create_partitioned_base_mesh(const scene::Scene& scene, MP
   std::vector<int> dest(compat::num_owned_cells(*base));
   for (std::int32_t c = 0; c < std::int32_t(dest.size()); ++c)
   {
-    const auto x = compat::cell_vertex_coordinates(*base, c);
-    const std::size_t nv = x.size() / 3;
-    double mid = 0;
-    for (std::size_t i = 0; i < nv; ++i)
-      mid += x[3 * i + axis] / double(nv);
+    const double mid = compat::cell_centroid(*base, c)[axis];
     const auto stripe = std::int64_t(std::floor((mid - lower) / width));
     dest[c] = int(((stripe % size) + size) % size);
   }
