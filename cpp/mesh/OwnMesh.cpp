@@ -5,7 +5,7 @@ namespace cellphase
 {
 OwnMesh::OwnMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base)
     : scene_(scene), base_(base),
-      margin_(scene.numerics.mesh.own_margin.value_or(8 * scene.numerics.epsilon))
+      margin_(scene.numerics.mesh.own_margin_or_default(scene.numerics.epsilon))
 {
 }
 

@@ -337,7 +337,7 @@ std::string PhaseFieldSubProblem::patch_problem() const
   // The cell's band may approach the box its mesh was cut around to a quarter of the
   // margin: beyond, phi is no longer -1 where the mesh ends. (A side of the box beyond a
   // wall is never approached: the band stays inside the domain.)
-  const double margin = scene_.numerics.mesh.own_margin.value_or(8 * scene_.numerics.epsilon);
+  const double margin = scene_.numerics.mesh.own_margin_or_default(scene_.numerics.epsilon);
   const auto band = box_above(*module_.fields().at("phi"), own_band_level);
   double gap = 1e300;
   for (int a = 0; a < scene_.domain.dim; ++a)
