@@ -4,6 +4,7 @@
 #include "scene/InteractionPairs.h"
 #include "util/Clock.h"
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -89,11 +90,28 @@ void InteractionSubProblem::attach(FieldRegistry& fields)
   update_sums(); // for the observables of this state
 }
 
+namespace
+{
+/// The faces of a band box pass through nodes, whose coordinates differ in the last bits
+/// with the cell that tabulates them (and so with the number of ranks): a tolerance of
+/// round-off relative to the box's coordinates.
+double round_off(const std::array<double, 6>& box)
+{
+  double scale = 1;
+  for (double c : box)
+    scale = std::max(scale, std::abs(c));
+  return 1e-9 * scale;
+}
+} // namespace
+
 bool InteractionSubProblem::boxes_meet(const std::array<double, 6>& a,
                                        const std::array<double, 6>& b)
 {
+  // Boxes that touch within round-off meet (on any number of ranks: the faces of two
+  // patches' boxes often pass through the same column of base-mesh nodes).
+  const double pad = std::max(round_off(a), round_off(b));
   for (int d = 0; d < 3; ++d)
-    if (a[3 + d] < b[d] || b[3 + d] < a[d])
+    if (a[3 + d] + pad < b[d] || b[3 + d] + pad < a[d])
       return false;
   return true;
 }
@@ -112,12 +130,7 @@ InteractionSubProblem::Samples InteractionSubProblem::sample(std::size_t i, std:
   }
   const auto& x = nodes_[i];
   std::vector<double> pts;
-  // The box's faces pass through nodes, whose coordinates differ in the last bits with the
-  // cell that tabulates them (and so with the number of ranks): pad it by round-off.
-  double pad = 1;
-  for (double c : box_j)
-    pad = std::max(pad, std::abs(c));
-  pad *= 1e-9;
+  const double pad = round_off(box_j); // nodes on the box's faces, tabulated anywhere
   for (std::size_t k = 0; k < x.size() / 3; ++k)
   {
     bool inside = true;
