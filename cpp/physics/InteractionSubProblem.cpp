@@ -94,12 +94,14 @@ namespace
 {
 /// The faces of a band box pass through nodes, whose coordinates differ in the last bits
 /// with the cell that tabulates them (and so with the number of ranks): a tolerance of
-/// round-off relative to the box's coordinates.
+/// round-off relative to the box's coordinates. An empty box (ends at -+infinity) gets
+/// none, so that it meets no other box.
 double round_off(const std::array<double, 6>& box)
 {
   double scale = 1;
   for (double c : box)
-    scale = std::max(scale, std::abs(c));
+    if (std::isfinite(c))
+      scale = std::max(scale, std::abs(c));
   return 1e-9 * scale;
 }
 } // namespace
