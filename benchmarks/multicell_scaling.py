@@ -107,7 +107,7 @@ def largest_difference(a, b, keep=lambda k: True):
     worst, where = 0.0, ""
     for k in a[0]:
         if k.startswith("wall_") or k in ("dofs", "flow_dofs", "remesh_volume_change",
-                                          "inclination_deg") or not keep(k):
+                                          "inclination_deg") or not keep(k) or k not in b[0]:
             continue
         for ra, rb in zip(a, b):
             x, y = float(ra[k]), float(rb[k])

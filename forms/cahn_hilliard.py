@@ -12,7 +12,7 @@ from ufl import (Coefficient, FunctionSpace, TestFunctions, TrialFunctions, ds, 
                  inner, split)
 
 from cellphase_ufl import (ADVECTION_DEGREE, QDEG, W, advection, bdf2_constants, constants, dW,
-                           ddW, domain, extrapolate, mixed, velocity, own_mesh_advection)
+                           ddW, domain, extrapolate, mixed, velocity, own_mesh_advection, own_mesh_outflow)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -20,6 +20,7 @@ u0 = Coefficient(Wsp)  # (phi^n, mu^n)
 phi0, mu0 = split(u0)
 v = velocity()
 own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
+outflow_lhs, outflow_rhs = own_mesh_outflow(phi, psi, v, own_mesh)  # the patch's edge
 dt, eps, gamma, S, degenerate, cos_theta = constants("dt", "eps", "gamma", "S", "degenerate",
                                                     "cos_theta")
 dxq = dx(metadata={"quadrature_degree": QDEG})
@@ -31,13 +32,13 @@ wall = -cos_theta / math.sqrt(2) * (1 - phi0**2) * nu * ds           # contact a
 def linear_part(now):
     return (now * psi / dt + mu * nu - eps * inner(grad(phi), grad(nu))) * dx \
         + gamma_phi * inner(grad(mu), grad(psi)) * dxq \
-        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)        # v . grad phi, 2.8
+        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE) + outflow_lhs  # v . grad phi, 2.8
 
 
 common = linear_part(phi)
 # Taylor linearisation of W'(phi) about phi^n (section 5.3)
 a = common - ddW(phi0) / eps * phi * nu * dxq
-patch = own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
+patch = own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE) + outflow_rhs
 L = phi0 * psi / dt * dx + patch + (dW(phi0) - ddW(phi0) * phi0) / eps * nu * dxq + wall
 # Stabilised: W'(phi^n) + S (phi - phi^n), constant matrix
 a_stab = common - S / eps * phi * nu * dx

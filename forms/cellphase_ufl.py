@@ -35,17 +35,37 @@ def advection(phi, psi, v):
 
 def own_mesh_advection(psi, v, own_mesh):
     """On a cell's own mesh (own_mesh = 1) phi + 1 is advected instead of phi: the same for
-    div v = 0, but phi + 1 vanishes at the patch's edge, where v.n != 0, so the boundary term
-    that -phi v . grad(psi) drops is zero there too (section 7.2). This is the phi-free part
-    of -(phi + 1) v . grad(psi), on the right-hand side; own_mesh = 0 on the shared mesh."""
+    div v = 0, but phi + 1 is the cell's own content, zero outside the patch, so the flux
+    through the patch's edge is (phi + 1) v . n (see own_mesh_outflow). This is the phi-free
+    part of -(phi + 1) v . grad(psi), on the right-hand side; own_mesh = 0 on the shared mesh."""
     from ufl import dot, grad
     return own_mesh * dot(v, grad(psi))
+
+
+def own_mesh_outflow(phi, psi, v, own_mesh):
+    """The boundary term of the advection of phi + 1 on a cell's own mesh (section 7.2), upwind:
+    where the fluid leaves the patch (v . n > 0) phi + 1 leaves with it, implicit in phi^{n+1};
+    where it enters, it brings phi + 1 = 0 (no other part of this cell lies outside). Without
+    it nothing leaves, and what the flow carries to the edge piles up there. Returns the
+    (lhs, rhs) parts of int max(v . n, 0) (phi + 1) psi ds; both are exact zeros on the shared
+    mesh (own_mesh = 0) and on walls (v = 0)."""
+    from ufl import ds
+    dsq = ds(degree=OUTFLOW_DEGREE)
+    return leaving(v, own_mesh) * phi * psi * dsq, -leaving(v, own_mesh) * psi * dsq
+
+
+def leaving(v, own_mesh):
+    """own_mesh max(v . n, 0): the normal velocity where the fluid leaves the mesh."""
+    from ufl import FacetNormal, conditional, dot, gt
+    n = FacetNormal(domain)
+    return own_mesh * conditional(gt(dot(v, n), 0), dot(v, n), 0)
 
 
 # The advection term is integrated with its exact degree (P2 * P2 * grad P1 = 5), a rule of
 # its own: FFCx then emits it as a separate block, and the code (and round-off) of the other
 # terms is the same as without flow, where the block adds exact zeros.
 ADVECTION_DEGREE = 5
+OUTFLOW_DEGREE = 6  # v . n phi psi on a facet: P2 * P2 * P2
 
 
 def mixed(n):

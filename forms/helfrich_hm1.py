@@ -12,7 +12,7 @@ from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialF
 
 from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, bdf2_constants, constants,
                            dddW0, ddW0, domain, dW0, helfrich_time_schemes, kappa_of, mixed,
-                           velocity, own_mesh_advection)
+                           velocity, own_mesh_advection, own_mesh_outflow)
 
 Wsp = FunctionSpace(domain, mixed(3))
 (phi, mu, w), (psi, nu, zeta) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -24,6 +24,7 @@ dxq = dx(metadata={"quadrature_degree": QDEG})
 kappa0 = kappa_of(phi0, mu0, H0)
 v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
 own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
+outflow_lhs, outflow_rhs = own_mesh_outflow(phi, psi, v, own_mesh)  # the patch's edge
 
 # Coupling stabilisation (flow.coupling_stabilisation = beta): the flow of the split saw the
 # force w^n grad phi^n (3.59), the energy law asks for w^{n+1}; with a small mobility gamma
@@ -41,14 +42,14 @@ def linear_part(now):
     return (now * psi / dt + gamma * inner(grad(w), grad(psi))
             + w * zeta + 1 / Be * inner(grad(mu), grad(zeta))
             + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
-        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE) \
+        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE) + outflow_lhs \
         + beta_coupling * inner(grad(w), grad(psi)) * dx(degree=COUPLING_DEGREE)
 
 
 # `before`: the known part of the time derivative; kappa: the explicit curvature.
 def rhs_part(before, kappa):
     return before * psi / dt * dx + (lam_a / Be + sigma) * kappa * zeta * dxq \
-        + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE) \
+        + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE) + outflow_rhs \
         + beta_coupling * inner(grad(w0), grad(psi)) * dx(degree=COUPLING_DEGREE)
 
 

@@ -10,7 +10,7 @@ from ufl import (Coefficient, FunctionSpace, TestFunction, TestFunctions, TrialF
 
 from cellphase_ufl import (ADVECTION_DEGREE, P2, QDEG, advection, bdf2_constants, constants,
                            dddW0, ddW0, domain, dW0, helfrich_time_schemes, kappa_of, mixed,
-                           velocity, own_mesh_advection)
+                           velocity, own_mesh_advection, own_mesh_outflow)
 
 Wsp = FunctionSpace(domain, mixed(2))
 (phi, mu), (psi_test, nu) = TrialFunctions(Wsp), TestFunctions(Wsp)
@@ -28,20 +28,22 @@ g = gamma / Be
 kappa0 = kappa_of(phi0, mu0, H0)
 v = velocity()  # flow velocity (zero without flow): the material derivative (3.41)
 own_mesh, = constants("own_mesh")  # 1 on a cell's own mesh (numerics.mesh.cell_meshes: own)
+outflow_lhs, outflow_rhs = own_mesh_outflow(phi, psi, v, own_mesh)  # the patch's edge
 
 # Linear part shared by all time discretisations (Lap mu integrated by parts); `now` is the
 # trial part of the time derivative (phi, or c0 phi for BDF2).
 def linear_part(now):
     return (now * psi / dt - g * inner(grad(mu), grad(psi))
             + mu * nu + eps * inner(grad(phi), grad(nu))) * dx \
-        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE)  # v . grad phi of (3.61) / (3.83)
+        + advection(phi, psi, v) * dx(degree=ADVECTION_DEGREE) \
+        + outflow_lhs  # v . grad phi of (3.61) / (3.83)
 
 
 # `before`: the known part of the time derivative; kappa: the explicit curvature.
 def rhs_part(before, kappa):
     return before * psi / dt * dx \
         - (g * (lam_v + lam_a * kappa) + gamma * sigma * kappa) * psi * dxq \
-        + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE)
+        + own_mesh_advection(psi, v, own_mesh) * dx(degree=ADVECTION_DEGREE) + outflow_rhs
 
 
 # Taylor linearisation (section 5.3) about (phi_l, mu_l):

@@ -59,7 +59,13 @@ stretch_weight = band * z * dxq
 from cellphase_ufl import B_of  # noqa: E402
 w_sum = Coefficient(FunctionSpace(domain, P2))
 interaction_energy = B_of(phi, eps) * w_sum * dxq
-forms = [interaction_energy, com_cos_0, com_cos_1, com_sin_0, com_sin_1, com_open_0, com_open_1, stretch_sum, stretch_weight, volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1,
+# What the flow carries across the edge of a cell's own mesh per unit time: the outflow term
+# of cellphase_ufl.own_mesh_outflow tested with psi = 1, int max(v . n, 0) (1 + phi) ds.
+from cellphase_ufl import OUTFLOW_DEGREE, leaving, velocity  # noqa: E402
+from ufl import ds  # noqa: E402
+v = velocity()
+edge_outflow = leaving(v, 1.0) * (1 + phi) * ds(degree=OUTFLOW_DEGREE)
+forms = [edge_outflow, interaction_energy, com_cos_0, com_cos_1, com_sin_0, com_sin_1, com_open_0, com_open_1, stretch_sum, stretch_weight, volume_weights, area_weights, phi_integral, cell_volume, energy_ch, helfrich_mu, com_0, com_1,
          moment_xx, moment_xy, moment_yy]
 if DIM == 3:
     com_2 = com[2]

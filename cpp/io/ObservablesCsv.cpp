@@ -1,4 +1,5 @@
 #include "io/ObservablesCsv.h"
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -47,7 +48,61 @@ ObservablesCsv::ObservablesCsv(const std::string& path, int dim, MPI_Comm comm,
   if (!file_)
     throw std::runtime_error("cannot write '" + path + "'");
   header_due_ = !resume;
+  check_header_ = resume;
+  path_ = path;
 }
+
+namespace
+{
+std::vector<std::string> split_csv(const std::string& line)
+{
+  std::vector<std::string> cells;
+  std::stringstream row(line);
+  for (std::string cell; std::getline(row, cell, ',');)
+    cells.push_back(cell);
+  return cells;
+}
+
+/// The file's rows under the header `names`, by column name ("nan" where a row has none).
+/// Returns the columns added and dropped, or "" if the header is `names` already.
+std::string rewrite_under(const std::string& path, const std::vector<std::string>& names)
+{
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  const auto old_names = split_csv(line);
+  if (old_names == names)
+    return "";
+  std::string text, added, dropped;
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    text += (i ? "," : "") + names[i];
+    if (std::find(old_names.begin(), old_names.end(), names[i]) == old_names.end())
+      added += " " + names[i];
+  }
+  for (const auto& n : old_names)
+    if (std::find(names.begin(), names.end(), n) == names.end())
+      dropped += " " + n;
+  text += "\n";
+  while (std::getline(in, line))
+  {
+    const auto cells = split_csv(line);
+    for (std::size_t i = 0; i < names.size(); ++i)
+    {
+      auto it = std::find(old_names.begin(), old_names.end(), names[i]);
+      const std::size_t k = it - old_names.begin();
+      text += (i ? "," : "") + (k < cells.size() ? cells[k] : std::string("nan"));
+    }
+    text += "\n";
+  }
+  in.close();
+  const std::string tmp = path + ".tmp";
+  std::ofstream(tmp) << text;
+  std::filesystem::rename(tmp, path);
+  return (added.empty() ? "" : "added" + added) + (!added.empty() && !dropped.empty() ? "; " : "")
+         + (dropped.empty() ? "" : "dropped" + dropped);
+}
+} // namespace
 
 ObservablesCsv::~ObservablesCsv()
 {
@@ -92,6 +147,22 @@ void ObservablesCsv::write(const StepRecord& r)
   if (!file_)
     return;
   const auto columns = observable_columns(r, dim_);
+  if (check_header_)
+  {
+    check_header_ = false;
+    std::vector<std::string> names;
+    for (const auto& c : columns)
+      names.push_back(c.name);
+    std::fclose(file_);
+    const std::string change = rewrite_under(path_, names);
+    if (!change.empty())
+      std::fprintf(stderr, "cellphase: note: the observables' columns differ from those of %s "
+                           "(%s); its rows before the restart are written again under the new "
+                           "header, nan where they have no value\n", path_.c_str(), change.c_str());
+    file_ = std::fopen(path_.c_str(), "a");
+    if (!file_)
+      throw std::runtime_error("cannot write '" + path_ + "'");
+  }
   if (header_due_)
   {
     for (std::size_t i = 0; i < columns.size(); ++i)

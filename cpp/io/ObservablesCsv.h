@@ -43,7 +43,9 @@ class ObservablesCsv
 {
 public:
   /// A new file; or, with resume_after_step >= 0 (a restart), the existing file cut back
-  /// to the rows up to that step and continued.
+  /// to the rows up to that step and continued. If the run's columns differ from the
+  /// file's (a checkpoint of an older version, another scene), the kept rows are written
+  /// again under the new header, nan where they have no value, and a note names the change.
   ObservablesCsv(const std::string& path, int dim, MPI_Comm comm, int resume_after_step = -1);
   ~ObservablesCsv();
   void write(const StepRecord& r);
@@ -52,5 +54,7 @@ private:
   std::FILE* file_ = nullptr;
   int dim_;
   bool header_due_ = false; ///< the header (with the extra columns) precedes the first row
+  bool check_header_ = false; ///< resumed: compare the file's header with the first row's
+  std::string path_;
 };
 } // namespace cellphase

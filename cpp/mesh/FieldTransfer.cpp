@@ -23,6 +23,27 @@ double integral_of(std::shared_ptr<const Function> f)
   return compat::assemble_scalar(*form);
 }
 
+void add_in_interface(std::shared_ptr<Function> phi, double amount)
+{
+  // The correction shape (1 - phi^2) at the P2 nodes is its own P2 interpolant.
+  auto shape = std::make_shared<Function>(phi->function_space());
+  {
+    auto p = phi->x()->array();
+    auto s = shape->x()->mutable_array();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      s[i] = std::max(0.0, 1 - p[i] * p[i]);
+  }
+  const double int_shape = integral_of(shape);
+  if (int_shape > 0)
+  {
+    const double c = amount / int_shape;
+    auto p = phi->x()->mutable_array();
+    auto s = shape->x()->array();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p[i] += c * s[i];
+  }
+}
+
 double mesh_volume(std::shared_ptr<const Space> V)
 {
   auto one = std::make_shared<Function>(std::const_pointer_cast<Space>(V));
@@ -48,24 +69,7 @@ void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<F
                       TransferReport& report, double shift)
 {
   const double int_old = integral_of(phi_old) + shift, int_new = integral_of(phi);
-
-  // The correction shape (1 - phi^2) at the P2 nodes is its own P2 interpolant.
-  auto shape = std::make_shared<Function>(phi->function_space());
-  {
-    auto p = phi->x()->array();
-    auto s = shape->x()->mutable_array();
-    for (std::size_t i = 0; i < p.size(); ++i)
-      s[i] = std::max(0.0, 1 - p[i] * p[i]);
-  }
-  const double int_shape = integral_of(shape);
-  if (int_shape > 0)
-  {
-    const double c = (int_old - int_new) / int_shape;
-    auto p = phi->x()->mutable_array();
-    auto s = shape->x()->array();
-    for (std::size_t i = 0; i < p.size(); ++i)
-      p[i] += c * s[i];
-  }
+  add_in_interface(phi, int_old - int_new);
   // Relative to the cell volume int (phi+1)/2 = (int phi + |Omega|)/2 on the new mesh.
   const double omega = mesh_volume(phi->function_space());
   const double cell_volume = (int_old + omega) / 2;

@@ -28,6 +28,10 @@ FieldMap transfer_fields(const FieldMap& old, std::shared_ptr<Space> V, Transfer
 void restore_integral(std::shared_ptr<const Function> phi_old, std::shared_ptr<Function> phi,
                       TransferReport& report, double shift = 0);
 
+/// Add c (1 - phi^2) to phi with c such that int phi grows by `amount`: a change of the
+/// cell's volume placed in its interface, phi = -1 outside stays.
+void add_in_interface(std::shared_ptr<Function> phi, double amount);
+
 /// int phi dx of a P2 field.
 double integral_of(std::shared_ptr<const Function> f);
 

@@ -93,6 +93,7 @@ ObservableForms observable_forms(int dim)
   ObservableForms f;
   f.phi_integral = get("phi_integral");
   f.interaction_energy = get("interaction_energy");
+  f.edge_outflow = get("edge_outflow");
   f.cell_volume = get("cell_volume");
   f.energy_ch = get("energy_ch");
   f.helfrich_mu = get("helfrich_mu");

@@ -47,6 +47,8 @@ struct ObservableForms
 {
   ufcx_form* phi_integral = nullptr;
   ufcx_form* interaction_energy = nullptr; ///< int B(phi) w_sum, a cell's term of (7.5)
+  /// int max(v . n, 0) (1 + phi) ds: what the flow "v" carries out of a cell's own mesh
+  ufcx_form* edge_outflow = nullptr;
   ufcx_form* cell_volume = nullptr;
   ufcx_form* energy_ch = nullptr;
   ufcx_form* helfrich_mu = nullptr;

@@ -151,6 +151,10 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
           fields.get("flow.v"), velocity_, compat::local_cells(*velocity_->function_space()->mesh()), 0.0);
       velocity_in_->apply();
       module_.set_velocity(velocity_);
+      auto phi = module_.fields().at("phi");
+      edge_outflow_form_ = compat::create_form(*observable_forms(dim).edge_outflow, {},
+                                               {{"phi", phi}, {"v", velocity_}}, {},
+                                               phi->function_space()->mesh());
     }
     // The cell's velocity int phi~ v / int phi~ (as the flow's cell_velocity, of one cell).
     auto v = own_ ? std::shared_ptr<const Function>(velocity_) : fields.get("flow.v");
@@ -218,6 +222,16 @@ StepTimings PhaseFieldSubProblem::step(double dt)
   const double in = seconds_since(t0);
   StepTimings t = module_.step(dt);
   t0 = Clock::now();
+  if (edge_outflow_form_)
+  {
+    // The advection lets phi + 1 leave where the fluid leaves the patch (forms/cellphase_ufl,
+    // own_mesh_outflow): the cell's diffuse tail and what it sheds. On the shared mesh it
+    // would stay in the domain and in int (1 + phi); here it is put back into the cell's
+    // interface, so the cell keeps its volume as on the shared mesh.
+    const double left = dt * compat::assemble_scalar(*edge_outflow_form_);
+    add_in_interface(module_.fields().at("phi"), left);
+    edge_outflow_ += left;
+  }
   update_copies();
   t.assemble += in + seconds_since(t0); // the transfers between the meshes
   return t;
@@ -312,6 +326,9 @@ void PhaseFieldSubProblem::observe(Observation& row)
     for (std::size_t d = 0; d < velocity_forms_.size() && weight > 0; ++d)
       velocity[d] = compat::assemble_scalar(*velocity_forms_[d]) / weight;
   }
+  if (edge_outflow_form_) // int (1 + phi)/2 put back so far, relative to the cell volume
+    row.extra.push_back({(groups_ > 1 ? group_.name + "." : "") + "edge_outflow",
+                         edge_outflow_ / 2 / v.volume});
   if (groups_ > 1)
   {
     const std::string g = group_.name + ".";
@@ -384,7 +401,10 @@ void PhaseFieldSubProblem::save(CheckpointData& data) const
   data.set(key("targets.area"), module_.targets().area);
   data.set(key("initial_volume"), initial_volume_);
   if (own_)
+  {
     data.set(key("targets.cell_volume"), cell_volume_target_);
+    data.set(key("edge_outflow"), edge_outflow_);
+  }
   // dE/dphi of the L2 Helfrich flows (the next flow step's force) uses them
   data.set(key("multipliers.volume"), module_.multipliers()[0]);
   data.set(key("multipliers.area"), module_.multipliers()[1]);
@@ -404,7 +424,11 @@ void PhaseFieldSubProblem::restore(const CheckpointData& data)
   module_.set_targets({data.scalar(key("targets.volume")), data.scalar(key("targets.area"))});
   initial_volume_ = data.scalar(key("initial_volume"));
   if (own_)
+  {
     cell_volume_target_ = data.scalar(key("targets.cell_volume"));
+    if (data.arrays.count(key("edge_outflow"))) // (checkpoints from before 2026-12-05 lack it)
+      edge_outflow_ = data.scalar(key("edge_outflow"));
+  }
   module_.set_multipliers({data.scalar(key("multipliers.volume")),
                            data.scalar(key("multipliers.area"))});
   for (int a = 0; a < 3; ++a)
