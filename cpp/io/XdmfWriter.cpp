@@ -98,6 +98,8 @@ void XdmfWriter::use_mesh(std::shared_ptr<const Mesh> mesh, int step)
 {
   const std::uint64_t fingerprint = mesh_fingerprint(*mesh);
   source_mesh_ = mesh;
+  to_p1_.reset();
+  to_p1_vector_.reset();
   // The same nodes and cells as the written mesh (a remesh that changed nothing): keep the
   // refined mesh, its spaces and its file; the fields are evaluated on it all the same.
   if (source_fingerprint_ == fingerprint)
@@ -142,7 +144,10 @@ void XdmfWriter::write(const FieldMap& fields, double time, int step)
       const bool vector = it->second->function_space()->element()->value_size() > 1;
       Function u(vector ? p1_vector_ : p1_);
       u.name = it->first;
-      compat::transfer(it->second, u);
+      auto& to = vector ? to_p1_vector_ : to_p1_;
+      if (!to)
+        to = std::make_unique<compat::MeshTransfer>(mesh, u.function_space());
+      to->apply(*it->second, u);
       // Only the data of this file is used: the grid below is composed from it. Give
       // DOLFINx an element that exists so that it does not warn about the mesh.
       out.write_function(u, time, "/Xdmf/Domain");

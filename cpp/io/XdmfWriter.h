@@ -44,6 +44,9 @@ private:
   std::optional<std::uint64_t> source_fingerprint_;
   std::shared_ptr<Space> p1_;                ///< P1 on its uniform refinement
   std::shared_ptr<Space> p1_vector_;         ///< vector P1 there (velocity)
+  /// source mesh -> p1_, p1_vector_: the nodes located once per mesh, not once per field
+  /// (with many cells, fields.xdmf holds tens of fields on one mesh)
+  std::unique_ptr<compat::MeshTransfer> to_p1_, to_p1_vector_;
   std::string mesh_file_;                    ///< fields/mesh-<m>.xdmf, written by DOLFINx
   std::optional<double> last_time_;
 };
