@@ -1,5 +1,6 @@
 #include "compat/Resample.h"
 #include "compat/PointLocator.h"
+#include "compat/PointWeights.h"
 #include "compat/RemotePoints.h"
 #include <dolfinx/fem/interpolate.h>
 #include <dolfinx/la/Vector.h>
@@ -61,6 +62,8 @@ Resampler::Resampler(std::shared_ptr<const Function> from, std::shared_ptr<Funct
   auto from_mesh = from->function_space()->mesh();
   auto locator = locator_of(from_mesh);
   from_cells_ = locator->locate(points_, true);
+  if (PointWeights::applicable(*from->function_space()))
+    weights_ = std::make_shared<const PointWeights>(*from->function_space(), points_, from_cells_);
   if (dolfinx::MPI::size(from_mesh->comm()) > 1)
     remote_ = std::make_shared<const RemotePoints>(from_mesh, *locator, points_, from_cells_);
 
@@ -95,7 +98,10 @@ void Resampler::apply(const Function& from, Function& to, double outside) const
     throw std::invalid_argument("Resampler: the fields are not on its meshes and spaces");
   const std::size_t n = points_.size() / 3, vs = value_size_;
   std::vector<double> values(n * vs, outside); // N rows of vs
-  from.eval(points_, {n, 3}, from_cells_, values, {n, vs});
+  if (weights_ && weights_->fits(from))
+    weights_->eval(from, values);
+  else
+    from.eval(points_, {n, 3}, from_cells_, values, {n, vs});
   for (std::size_t i = 0; i < n; ++i)
     if (from_cells_[i] < 0)
       for (std::size_t c = 0; c < vs; ++c)

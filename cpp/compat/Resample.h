@@ -15,6 +15,7 @@ namespace detail
 {
 class RemotePoints;
 }
+class PointWeights;
 
 /// Axis-aligned box: lower corner, then upper corner.
 using Box = std::array<double, 6>;
@@ -51,6 +52,7 @@ private:
   double outside_;
   int value_size_;
   std::shared_ptr<const detail::RemotePoints> remote_; ///< several ranks: points held elsewhere
+  std::shared_ptr<const PointWeights> weights_; ///< from's basis at the points (if applicable)
   std::vector<char> written_here_, written_anywhere_;  ///< per dof (block) of to's space
   std::shared_ptr<dolfinx::la::Vector<T>> writes_, writers_; ///< several ranks: exchange
 };

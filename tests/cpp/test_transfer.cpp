@@ -2,6 +2,7 @@
 // vector field (the velocity after a remesh) and a scalar one arrive exactly, since both
 // lie in P2 on either mesh.
 #include "compat/Dolfinx.h"
+#include "compat/PointWeights.h"
 #include "mesh/FieldTransfer.h"
 #include "mpi_main.h"
 #include <cmath>
@@ -63,4 +64,67 @@ TEST(Transfer, VectorAndScalarP2FieldsAreExact)
 
   // Different value sizes are refused.
   EXPECT_THROW(compat::transfer(s, to), std::invalid_argument);
+}
+
+// The weights of compat/PointWeights.h give Function::eval's values at fixed points: exact
+// for a quadratic (scalar P2 in 2D and 3D, vector P2 in 2D), at points anywhere in a cell.
+namespace
+{
+double max_weights_error(std::shared_ptr<Function> u, int dim)
+{
+  const Mesh& mesh = *u->function_space()->mesh();
+  const int bs = u->function_space()->element()->value_size();
+  std::vector<double> points;
+  std::vector<std::int32_t> cells;
+  unsigned seed = 7;
+  auto random = [&]() { seed = seed * 1103515245u + 12345u; return double(seed % 1000) / 1000; };
+  for (std::int32_t c = 0; c < compat::num_owned_cells(mesh); ++c)
+  {
+    const auto v = compat::cell_vertex_coordinates(mesh, c);
+    std::vector<double> lam(dim + 1);
+    double sum = 0;
+    for (auto& l : lam)
+      sum += (l = 0.1 + random());
+    std::array<double, 3> p{0, 0, 0};
+    for (int k = 0; k <= dim; ++k)
+      for (int d = 0; d < 3; ++d)
+        p[d] += lam[k] / sum * v[3 * k + d];
+    points.insert(points.end(), p.begin(), p.end());
+    cells.push_back(c);
+  }
+  cells.back() = -1; // a point without a cell keeps its value
+  const std::size_t n = cells.size();
+  std::vector<double> by_eval(n * bs, 0.0), by_weights(n * bs, 42.0);
+  u->eval(points, {n, 3}, cells, by_eval, {n, std::size_t(bs)});
+  EXPECT_TRUE(compat::PointWeights::applicable(*u->function_space()));
+  compat::PointWeights(*u->function_space(), points, cells).eval(*u, by_weights);
+  double err = 0;
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    for (int k = 0; k < bs; ++k)
+      err = std::max(err, std::abs(by_eval[i * bs + k] - by_weights[i * bs + k]));
+  EXPECT_EQ(by_weights[(n - 1) * bs], 42.0);
+  return err;
+}
+} // namespace
+
+TEST(Transfer, PointWeightsGiveTheValuesOfEval)
+{
+  scene::Domain d2;
+  d2.resolution = {5, 4, 0};
+  auto mesh2 = refined(d2, true);
+  auto s = std::make_shared<Function>(create_p2_space(mesh2, 2));
+  compat::interpolate(*s, [](double x, double y, double) { return x * x + 3 * x * y - y; });
+  EXPECT_LT(max_weights_error(s, 2), 1e-13);
+  auto v = std::make_shared<Function>(create_vector_p2_space(mesh2, 2));
+  compat::interpolate_vector(*v, quadratic);
+  EXPECT_LT(max_weights_error(v, 2), 1e-13);
+
+  scene::Domain d3;
+  d3.dim = 3;
+  d3.upper = {1, 1, 1};
+  d3.resolution = {3, 2, 2};
+  auto mesh3 = compat::create_base_mesh(MPI_COMM_WORLD, d3);
+  auto s3 = std::make_shared<Function>(create_p2_space(mesh3, 3));
+  compat::interpolate(*s3, [](double x, double y, double z) { return x * z + y * y - 2 * z; });
+  EXPECT_LT(max_weights_error(s3, 3), 1e-13);
 }
