@@ -239,6 +239,34 @@ def test_restart_with_a_smaller_time_step_counts_its_steps_from_the_restored_tim
     assert all(abs((t1 - t0) - 5e-4) < 1e-12 for (_, t0), (_, t1) in zip(steps[20:], steps[21:]))
 
 
+def test_restart_whose_observables_have_other_columns_rewrites_them_by_name(tmp_path):
+    """observables.csv written by a run with other columns (an older version, another scene)
+    is continued under the new header: the kept rows by column name, nan where they have
+    none, with a note on stderr; nothing is shifted into the wrong column."""
+    scene = vesicle_scene(end_time=0.008)
+    run_dir = tmp_path / "run"
+    scene_path = write_scene(scene, tmp_path, run_dir)
+    assert cellphase(["run", scene_path]).returncode == 0
+    before = rows(run_dir)
+    # As if written by a version without `circularity` and with a column since removed.
+    path = run_dir / "observables.csv"
+    names = list(before[0])
+    old = [n for n in names if n != "circularity"] + ["retired"]
+    path.write_text(",".join(old) + "\n" + "".join(
+        ",".join(r[n] if n != "retired" else "7" for n in old) + "\n" for r in before))
+    proc = cellphase(["run", scene_path, "--restart", run_dir, "--set",
+                      "numerics.end_time=0.012"])
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "added circularity" in proc.stderr and "dropped retired" in proc.stderr, proc.stderr
+    after = rows(run_dir)
+    assert list(after[0]) == names
+    assert [r["step"] for r in after] == [str(s) for s in range(13)]
+    for r, b in zip(after[:9], before):
+        assert r["circularity"] == "nan"
+        assert all(r[n] == b[n] for n in names if n != "circularity")
+    assert all(float(r["circularity"]) > 0.5 for r in after[9:])
+
+
 def test_volume_drift_beyond_the_scene_limit_stops(tmp_path):
     scene = circle_scene("allen_cahn_volume", end_time=0.005)
     scene["numerics"]["limits"] = {"volume_drift": 1e-12}
