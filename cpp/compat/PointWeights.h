@@ -1,7 +1,7 @@
 // A field's values at fixed points as weighted sums of its dofs. Function::eval pulls every
 // point back to its cell and tabulates the basis there on each call; the transfers between
-// a cell's own mesh and the shared mesh (compat/Resample.h) and the output (io/XdmfWriter)
-// evaluate fields at the same points every step, so the weights are computed once.
+// a cell's own mesh and the shared mesh (compat/Resample.h) evaluate fields at the same
+// points every step until the next remesh, so the weights are computed once.
 #pragma once
 #include "compat/Dolfinx.h"
 #include <cstdint>
