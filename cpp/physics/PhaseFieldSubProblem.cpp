@@ -226,10 +226,13 @@ StepTimings PhaseFieldSubProblem::step(double dt)
   {
     // The advection lets phi + 1 leave where the fluid leaves the patch (forms/cellphase_ufl,
     // own_mesh_outflow): the cell's diffuse tail and what it sheds. On the shared mesh it
-    // would stay in the domain and in int (1 + phi); here it is put back into the cell's
-    // interface, so the cell keeps its volume as on the shared mesh.
+    // would stay in the domain and in int (1 + phi). The H^-1 flows keep int phi by
+    // themselves, so it is put back into the cell's interface; the L2 flows' volume
+    // multiplier or penalty restores the volume itself, and Allen-Cahn does not keep it.
     const double left = dt * compat::assemble_scalar(*edge_outflow_form_);
-    add_in_interface(module_.fields().at("phi"), left);
+    const auto model = scene_.phase_field.model;
+    if (model == scene::Model::helfrich_hm1 || model == scene::Model::cahn_hilliard)
+      add_in_interface(module_.fields().at("phi"), left);
     edge_outflow_ += left;
   }
   update_copies();
@@ -326,7 +329,7 @@ void PhaseFieldSubProblem::observe(Observation& row)
     for (std::size_t d = 0; d < velocity_forms_.size() && weight > 0; ++d)
       velocity[d] = compat::assemble_scalar(*velocity_forms_[d]) / weight;
   }
-  if (edge_outflow_form_) // int (1 + phi)/2 put back so far, relative to the cell volume
+  if (edge_outflow_form_) // int (1 + phi)/2 carried out so far, relative to the cell volume
     row.extra.push_back({(groups_ > 1 ? group_.name + "." : "") + "edge_outflow",
                          edge_outflow_ / 2 / v.volume});
   if (groups_ > 1)

@@ -69,7 +69,7 @@ private:
   std::unique_ptr<compat::Resampler> velocity_in_;            ///< flow.v -> own mesh
   std::shared_ptr<Function> velocity_;                         ///< flow.v on the own mesh
   /// What the flow carries across the edge of the own mesh per unit time (forms/observables.py)
-  /// and its sum over the steps, int (1 + phi) put back into the interface (see step()).
+  /// and its sum over the steps, int (1 + phi) (put back into the interface: see step()).
   std::shared_ptr<Form> edge_outflow_form_;
   double edge_outflow_ = 0;
   /// int phi~ and int phi~ v_d of this cell (its velocity column), with a flow
