@@ -13,13 +13,13 @@
 #include "scene/Shapes.h"
 #include "util/Clock.h"
 #include "util/Mpi.h"
+#include "util/Split.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <set>
-#include <sstream>
 
 namespace cellphase
 {
@@ -33,15 +33,6 @@ std::string format(const char* fmt, ...)
   std::vsnprintf(buf, sizeof buf, fmt, args);
   va_end(args);
   return buf;
-}
-
-std::vector<std::string> split_names(const std::string& text)
-{
-  std::vector<std::string> names;
-  std::istringstream in(text);
-  for (std::string name; std::getline(in, name, ',');)
-    names.push_back(name);
-  return names;
 }
 
 /// Checkpoints since the field registry: fields under their qualified names, scalars under
@@ -295,7 +286,7 @@ Simulation::LoopState Simulation::restore()
     {
       throw CheckpointError(e.what());
     }
-    const auto stored = split_names(data.text("fields"));
+    const auto stored = split(data.text("fields"));
     fields_.clear_functions();
     for (const auto& name : fields_.names())
     {

@@ -1,9 +1,9 @@
 #include "io/ObservablesCsv.h"
+#include "util/Split.h"
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -54,15 +54,6 @@ ObservablesCsv::ObservablesCsv(const std::string& path, int dim, MPI_Comm comm,
 
 namespace
 {
-std::vector<std::string> split_csv(const std::string& line)
-{
-  std::vector<std::string> cells;
-  std::stringstream row(line);
-  for (std::string cell; std::getline(row, cell, ',');)
-    cells.push_back(cell);
-  return cells;
-}
-
 /// The file's rows under the header `names`, by column name ("nan" where a row has none).
 /// Returns the columns added and dropped, or "" if the header is `names` already.
 std::string rewrite_under(const std::string& path, const std::vector<std::string>& names)
@@ -70,7 +61,7 @@ std::string rewrite_under(const std::string& path, const std::vector<std::string
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);
-  const auto old_names = split_csv(line);
+  const auto old_names = split(line);
   if (old_names == names)
     return "";
   std::string text, added, dropped;
@@ -86,7 +77,7 @@ std::string rewrite_under(const std::string& path, const std::vector<std::string
   text += "\n";
   while (std::getline(in, line))
   {
-    const auto cells = split_csv(line);
+    const auto cells = split(line);
     for (std::size_t i = 0; i < names.size(); ++i)
     {
       auto it = std::find(old_names.begin(), old_names.end(), names[i]);
@@ -191,25 +182,13 @@ std::vector<std::pair<double, double>> read_observable(const std::string& path,
   std::vector<std::pair<double, double>> rows;
   if (!std::getline(in, line))
     return rows;
-  std::size_t index = 0;
-  bool found = false;
-  {
-    std::stringstream header(line);
-    for (std::string name; std::getline(header, name, ','); ++index)
-      if (name == column)
-      {
-        found = true;
-        break;
-      }
-  }
-  if (!found)
+  const auto names = split(line);
+  const std::size_t index = std::find(names.begin(), names.end(), column) - names.begin();
+  if (index == names.size())
     return rows;
   while (std::getline(in, line))
   {
-    std::stringstream row(line);
-    std::vector<std::string> cells;
-    for (std::string cell; std::getline(row, cell, ',');)
-      cells.push_back(cell);
+    const auto cells = split(line);
     if (cells.size() > index)
       rows.emplace_back(std::atof(cells[0].c_str()), std::atof(cells[index].c_str()));
   }
