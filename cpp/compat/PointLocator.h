@@ -2,6 +2,7 @@
 // are built once per mesh, so that a field evaluated again and again at other meshes'
 // nodes (transfers between meshes refined from the same base mesh) pays for them once.
 #pragma once
+#include "compat/CellContains.h"
 #include "compat/Dolfinx.h"
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/geometry/utils.h>
@@ -51,13 +52,12 @@ public:
     if (cells_.empty())
       return cells;
     auto candidates = dolfinx::geometry::compute_collisions(tree_, pts);
-    auto colliding = dolfinx::geometry::compute_colliding_cells(*mesh_, candidates, pts);
+    const CellContains contains(*mesh_);
     std::vector<std::size_t> missed;
     for (std::size_t i = 0; i < n; ++i)
     {
-      if (colliding.num_links(i) > 0)
-        cells[i] = colliding.links(i)[0];
-      else
+      cells[i] = contains.first(candidates.links(i), pts.data() + 3 * i);
+      if (cells[i] < 0)
         missed.push_back(i);
     }
     if (missed.empty())

@@ -2,10 +2,13 @@
 // vector field (the velocity after a remesh) and a scalar one arrive exactly, since both
 // lie in P2 on either mesh.
 #include "compat/Dolfinx.h"
+#include "compat/CellContains.h"
 #include "compat/PointWeights.h"
 #include "mesh/FieldTransfer.h"
 #include "mpi_main.h"
+#include <dolfinx/geometry/BoundingBoxTree.h>
 #include <cmath>
+#include <numeric>
 
 using namespace cellphase;
 
@@ -127,4 +130,59 @@ TEST(Transfer, PointWeightsGiveTheValuesOfEval)
   auto s3 = std::make_shared<Function>(create_p2_space(mesh3, 3));
   compat::interpolate(*s3, [](double x, double y, double z) { return x * z + y * y - 2 * z; });
   EXPECT_LT(max_weights_error(s3, 3), 1e-13);
+}
+
+namespace
+{
+/// Points where the choice of cell is delicate: every node of the mesh (on several cells),
+/// midpoints of the cells' edges, points just outside the domain (by less and by more than
+/// dolfinx's 1e-10) and points inside the cells. Returns how many CellContains placed in
+/// another cell than dolfinx::geometry::compute_colliding_cells does.
+int cells_chosen_differently(const Mesh& mesh)
+{
+  const int tdim = mesh.topology().dim();
+  std::vector<double> pts;
+  auto x = mesh.geometry().x();
+  pts.insert(pts.end(), x.begin(), x.end());
+  for (std::int32_t c = 0; c < compat::num_owned_cells(mesh); ++c)
+  {
+    auto v = mesh.geometry().dofmap().links(c);
+    for (int d = 0; d < 3; ++d) // a point inside
+      pts.push_back((x[3 * v[0] + d] + x[3 * v[1] + d] + 2 * x[3 * v[2] + d]) / 4);
+    for (int d = 0; d < 3; ++d) // an edge's midpoint
+      pts.push_back((x[3 * v[0] + d] + x[3 * v[1] + d]) / 2);
+  }
+  const std::size_t nodes = x.size() / 3;
+  for (double shift : {0.4e-10, 0.9e-10, 1.1e-10, 1.9e-10, 2.1e-10, 5e-10})
+    for (std::size_t k = 0; k < nodes; ++k)
+      if (x[3 * k] == 0) // a node on the face x = 0, moved out of the domain
+        pts.insert(pts.end(), {-shift, x[3 * k + 1] + 1e-3 * shift, x[3 * k + 2]});
+  std::vector<std::int32_t> cells(compat::num_owned_cells(mesh));
+  std::iota(cells.begin(), cells.end(), 0);
+  dolfinx::geometry::BoundingBoxTree tree(mesh, tdim, cells, 1e-10);
+  auto candidates = dolfinx::geometry::compute_collisions(tree, pts);
+  auto colliding = dolfinx::geometry::compute_colliding_cells(mesh, candidates, pts);
+  const compat::detail::CellContains contains(mesh);
+  int differ = 0, outside = 0;
+  for (std::size_t i = 0; i < pts.size() / 3; ++i)
+  {
+    const std::int32_t theirs = colliding.num_links(i) ? colliding.links(i)[0] : -1;
+    differ += contains.first(candidates.links(i), pts.data() + 3 * i) != theirs;
+    outside += theirs < 0;
+  }
+  EXPECT_GT(outside, 0); // the test reaches the points beyond the tolerance
+  return differ;
+}
+} // namespace
+
+TEST(Transfer, CellContainsChoosesTheCellDolfinxChooses)
+{
+  scene::Domain d2;
+  d2.resolution = {5, 4, 0};
+  EXPECT_EQ(cells_chosen_differently(*refined(d2, true)), 0);
+  scene::Domain d3;
+  d3.dim = 3;
+  d3.upper = {1, 1, 1};
+  d3.resolution = {3, 2, 2};
+  EXPECT_EQ(cells_chosen_differently(*compat::create_base_mesh(MPI_COMM_WORLD, d3)), 0);
 }
