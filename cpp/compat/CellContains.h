@@ -18,9 +18,8 @@ class CellContains
 public:
   explicit CellContains(const Mesh& mesh)
       : mesh_(mesh), tdim_(mesh.topology().dim()),
-        fast_(mesh.geometry().cmap().degree() == 1 && mesh.geometry().dim() == tdim_
-              && (mesh.topology().cell_type() == dolfinx::mesh::CellType::triangle
-                  || mesh.topology().cell_type() == dolfinx::mesh::CellType::tetrahedron))
+        // straight triangles and tetrahedra: affine simplices (as PointWeights::applicable)
+        fast_(mesh.geometry().cmap().is_affine() && tdim_ >= 2 && mesh.geometry().dim() == tdim_)
   {
   }
 
@@ -58,7 +57,7 @@ private:
     auto nodes = mesh_.geometry().dofmap().links(c);
     auto x = mesh_.geometry().x();
     const int nv = tdim_ + 1;
-    std::array<std::array<double, 3>, 4> v;
+    std::array<std::array<double, 3>, 4> v; // not cell_vertex_coordinates: no allocation here
     for (int k = 0; k < nv; ++k)
       for (int d = 0; d < 3; ++d)
         v[k][d] = x[3 * nodes[k] + d];

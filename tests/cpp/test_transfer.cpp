@@ -3,12 +3,12 @@
 // lie in P2 on either mesh.
 #include "compat/Dolfinx.h"
 #include "compat/CellContains.h"
+#include "compat/PointLocator.h"
 #include "compat/PointWeights.h"
 #include "mesh/FieldTransfer.h"
 #include "mpi_main.h"
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <cmath>
-#include <numeric>
 
 using namespace cellphase;
 
@@ -157,9 +157,7 @@ int cells_chosen_differently(const Mesh& mesh)
     for (std::size_t k = 0; k < nodes; ++k)
       if (x[3 * k] == 0) // a node on the face x = 0, moved out of the domain
         pts.insert(pts.end(), {-shift, x[3 * k + 1] + 1e-3 * shift, x[3 * k + 2]});
-  std::vector<std::int32_t> cells(compat::num_owned_cells(mesh));
-  std::iota(cells.begin(), cells.end(), 0);
-  dolfinx::geometry::BoundingBoxTree tree(mesh, tdim, cells, 1e-10);
+  dolfinx::geometry::BoundingBoxTree tree(mesh, tdim, compat::detail::all_local_cells(mesh), 1e-10);
   auto candidates = dolfinx::geometry::compute_collisions(tree, pts);
   auto colliding = dolfinx::geometry::compute_colliding_cells(mesh, candidates, pts);
   const compat::detail::CellContains contains(mesh);

@@ -105,7 +105,6 @@ def test_own_mesh_advection_has_no_bulk_source(tmp_path):
     assert abs(returned[-1]) > 1e-7 and returned[0] == 0
 
 
-
 def test_the_volume_multiplier_alone_keeps_an_l2_cell_volume_on_its_own_mesh(tmp_path):
     """helfrich_lagrange holds the volume at t^{n+1} by its multiplier, whatever left across
     the patch's edge; the put-back of the H^-1 flows would add it a second time (measured:
