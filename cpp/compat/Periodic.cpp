@@ -150,21 +150,27 @@ la::petsc::Matrix PeriodicConstraint::create_matrix(const Form& a) const
 
 void PeriodicConstraint::assemble_matrix(Mat A, const Form& a, const BCs& bcs) const
 {
-  MatZeroEntries(A);
-  auto add_block = la::petsc::Matrix::set_block_fn(A, ADD_VALUES);
-  auto add = la::petsc::Matrix::set_fn(A, ADD_VALUES);
-  if (mpc_)
-    // Puts 1 on the diagonal of the (owned) slave rows itself.
-    dolfinx_mpc::assemble_matrix(add_block, add, a, mpc_, mpc_, bcs, 1.0);
-  else
-    fem::assemble_matrix(add_block, a, bcs);
-  // INSERT (after a flush) rather than ADD: a dof in two BCs (a corner of two walls)
-  // must still get a diagonal of 1, not 2.
-  MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
-  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *V_, bcs);
-  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  // Element entries added at the positions recorded by the first assembly of a into A
+  // (solve/RecordedAssembly).
+  auto assemble = [&](const RecordedAssembly::AddFn& add_block, const RecordedAssembly::AddFn& add)
+  {
+    if (mpc_)
+      // Puts 1 on the diagonal of the (owned) slave rows itself.
+      dolfinx_mpc::assemble_matrix(add_block, add, a, mpc_, mpc_, bcs, 1.0);
+    else
+      fem::assemble_matrix(add_block, a, bcs);
+  };
+  auto finalise = [&]
+  {
+    // INSERT (after a flush) rather than ADD: a dof in two BCs (a corner of two walls)
+    // must still get a diagonal of 1, not 2.
+    MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
+    MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
+    fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *V_, bcs);
+    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  };
+  recorded_->assemble(A, &a, assemble, finalise);
 }
 
 la::Vector<T> PeriodicConstraint::create_vector() const

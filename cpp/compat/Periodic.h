@@ -4,6 +4,7 @@
 // constrained and unconstrained systems by the list of axes alone.
 #pragma once
 #include "compat/Dolfinx.h"
+#include "solve/RecordedAssembly.h"
 #include <array>
 #include <memory>
 #include <vector>
@@ -74,6 +75,8 @@ private:
 
   std::shared_ptr<const Space> V_;
   std::shared_ptr<dolfinx_mpc::MultiPointConstraint<T>> mpc_;
+  /// Where each matrix' element entries go (assemble_matrix is const for its callers).
+  std::unique_ptr<RecordedAssembly> recorded_ = std::make_unique<RecordedAssembly>();
   /// Slaves with Dirichlet masters: u_s = sum c u_m + constant (local slave, constant), and
   /// the constants as a Dirichlet condition on those slaves for the lifting.
   std::vector<std::pair<std::int32_t, T>> constants_;

@@ -15,6 +15,7 @@
 #include "periodic_stokes.h"
 #include "periodic_vector.h"
 #include "solve/LinearSolver.h"
+#include "solve/RecordedAssembly.h"
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -463,4 +464,103 @@ TEST(Periodic, StokesChannelWithCrossForceStaysPeriodic)
     EXPECT_GT(j.size, 1e-3);
   for (const auto& j : r.jumps)
     EXPECT_LT(j.jump, 1e-11);
+}
+
+namespace
+{
+/// Entries of the owned rows of X and Y that differ in column or value (bit for bit),
+/// summed over the ranks.
+int differing_entries(Mat X, Mat Y)
+{
+  PetscInt first, last;
+  MatGetOwnershipRange(X, &first, &last);
+  int differ = 0;
+  for (PetscInt row = first; row < last; ++row)
+  {
+    PetscInt nx, ny;
+    const PetscInt *cx, *cy;
+    const PetscScalar *vx, *vy;
+    MatGetRow(X, row, &nx, &cx, &vx);
+    std::vector<PetscInt> cols(cx, cx + nx);
+    std::vector<PetscScalar> vals(vx, vx + nx);
+    MatRestoreRow(X, row, &nx, &cx, &vx); // (sets nx to 0)
+    MatGetRow(Y, row, &ny, &cy, &vy);
+    if (ny != PetscInt(cols.size()))
+      ++differ;
+    else
+      for (PetscInt k = 0; k < ny; ++k)
+        differ += cols[k] != cy[k] || vals[k] != vy[k];
+    MatRestoreRow(Y, row, &ny, &cy, &vy);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  return differ;
+}
+} // namespace
+
+// solve/RecordedAssembly: element entries added at recorded positions give PETSc's own
+// sums bit for bit (rows of other ranks on two ranks); a form of its own or a call sequence
+// that differs from the record goes through PETSc again. Then the same for the periodic
+// constraint's assembly (dolfinx_mpc's, with slave rows and master columns).
+TEST(Periodic, RecordedAssemblyGivesPetscsSumsBitForBit)
+{
+  auto mesh = unit_square(12);
+  auto W = compat::create_space(functionspace_form_periodic_mixed_a, "v_0", mesh);
+  auto dt = std::make_shared<Constant>(0.01);
+  const ConstantMap c{{"dt", dt}};
+  auto a = compat::create_form(*form_periodic_mixed_a, {W, W}, {}, c);
+  auto a_again = compat::create_form(*form_periodic_mixed_a, {W, W}, {}, c);
+  auto A = dolfinx::fem::petsc::create_matrix(*a), reference = dolfinx::fem::petsc::create_matrix(*a);
+  // Assembly into M by `recorder`, leaving out the first element matrix if asked.
+  auto assemble = [&](RecordedAssembly& recorder, Mat M, const Form& form, bool drop_first)
+  {
+    recorder.assemble(
+        M, &form,
+        [&](const RecordedAssembly::AddFn& add_block, const RecordedAssembly::AddFn&)
+        {
+          int call = 0;
+          RecordedAssembly::AddFn add = [&](const auto& rows, const auto& cols, const auto& values)
+          { return drop_first && call++ == 0 ? 0 : add_block(rows, cols, values); };
+          dolfinx::fem::assemble_matrix(add, form, {});
+        },
+        [&]
+        {
+          MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY);
+          MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY);
+        });
+  };
+  // The reference goes through PETSc every time (a new recorder each time).
+  auto through_petsc = [&](const Form& form, bool drop_first)
+  {
+    RecordedAssembly fresh;
+    assemble(fresh, reference, form, drop_first);
+    EXPECT_EQ(fresh.replays(), 0);
+  };
+  RecordedAssembly recorded;
+  assemble(recorded, A, *a, false); // records
+  for (double value : {0.02, 0.5})
+  {
+    dt->value[0] = value;
+    assemble(recorded, A, *a, false);
+    through_petsc(*a, false);
+    EXPECT_EQ(differing_entries(A, reference), 0) << "dt " << value;
+  }
+  EXPECT_EQ(recorded.replays(), 2);
+  assemble(recorded, A, *a_again, false); // another form: recorded anew
+  EXPECT_EQ(recorded.replays(), 2);
+  assemble(recorded, A, *a, true); // calls that do not match the record: through PETSc
+  through_petsc(*a, true);
+  EXPECT_EQ(recorded.replays(), 2);
+  EXPECT_EQ(differing_entries(A, reference), 0);
+  MatDestroy(&A);
+  MatDestroy(&reference);
+
+  for (const std::vector<int>& axes : {std::vector<int>{}, std::vector<int>{0, 1}})
+  {
+    PeriodicConstraint pc(W, lower, upper, axes);
+    auto replayed = pc.create_matrix(*a), fresh = pc.create_matrix(*a);
+    for (int k = 0; k < 3; ++k) // records, replays twice
+      pc.assemble_matrix(replayed.mat(), *a, {});
+    PeriodicConstraint(W, lower, upper, axes).assemble_matrix(fresh.mat(), *a, {});
+    EXPECT_EQ(differing_entries(replayed.mat(), fresh.mat()), 0) << "axes " << axes.size();
+  }
 }
