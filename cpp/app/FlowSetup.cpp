@@ -98,7 +98,7 @@ FlowParameters flow_parameters(const scene::Scene& scene)
     tag_walls(scene, p);
   p.periodic = scene.domain.periodic; // their sides are open above: no wall there
   p.petsc = f.petsc;
-  p.reuse_factorisations = scene.numerics.solver == scene::Numerics::Solver::reuse;
+  p.reuse_factorisations = scene::flow_solver(scene) == scene::Numerics::Solver::reuse;
   p.second_order = !scene::flow_history_fields(scene).empty();
   p.extrapolate_phase = scene.numerics.coupling == scene::Numerics::Coupling::extrapolated;
   p.extrapolate_potential = scene::flow_extrapolates_potential(scene);

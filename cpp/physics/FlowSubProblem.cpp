@@ -246,7 +246,7 @@ void FlowSubProblem::observe(Observation& row)
                                : v.total_energy;
   v.total_with_kinetic = v.kinetic_energy + interface;
   row.extra.push_back({"flow_dofs", double(flow_.num_dofs())}); // the rest of `dofs` is the cells'
-  if (scene_.numerics.solver == scene::Numerics::Solver::reuse)
+  if (scene::flow_solver(scene_) == scene::Numerics::Solver::reuse)
     solver_columns_.add(row, flow_.factorisations(), flow_.krylov_iterations());
 }
 

@@ -179,7 +179,7 @@ void PolarGelSubProblem::connect(FieldRegistry& fields)
   system_ = std::make_unique<PeriodicSystem>(
       compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_),
       compat::create_form(*forms_.L, {W_}, coeffs, constants_), scene_, comm_, "polar_",
-      scene_.numerics.petsc);
+      scene_.numerics.petsc, scene_.numerics.solver);
 
   if (scene_.flow)
   {

@@ -169,7 +169,7 @@ void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
   system_ = std::make_unique<PeriodicSystem>(
       compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_),
       compat::create_form(*forms_.L, {W_}, coeffs, constants_), scene_, comm_, "rd_",
-      rd_.petsc ? *rd_.petsc : scene_.numerics.petsc);
+      rd_.petsc ? *rd_.petsc : scene_.numerics.petsc, scene::reaction_diffusion_solver(scene_));
 
   if (scene::has_protrusion(scene_))
   {

@@ -200,7 +200,7 @@ void read_flow(const Section& top, Scene& s)
   }
   const Section f = top.section("flow");
   f.allow_only({"equations", "density", "viscosity", "gravity", "force", "cell_force",
-                "surface_tension", "walls", "petsc", "inextensibility",
+                "surface_tension", "walls", "petsc", "solver", "inextensibility",
                 "coupling_stabilisation"});
   const Model m = s.phase_field.model;
   if (!couples_to_flow(m))
@@ -257,6 +257,9 @@ void read_flow(const Section& top, Scene& s)
     flow.coupling_stabilisation = f.number("coupling_stabilisation", non_negative());
   }
   read_petsc_options(f.section("petsc"), flow.petsc);
+  if (f.has("solver"))
+    flow.solver = f.choice("solver", Numerics::Solver::direct,
+                           {{"direct", Numerics::Solver::direct}, {"reuse", Numerics::Solver::reuse}});
   flow.inextensibility = read_inextensibility(f, m);
   s.flow = flow;
   check_cell_viscosities(top, s);

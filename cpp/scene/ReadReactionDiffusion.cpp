@@ -149,7 +149,7 @@ void read_reaction_diffusion(const Section& top, Scene& s)
     return;
   const Section rd = top.section("reaction_diffusion");
   rd.allow_only({"model", "species", "kinetics", "regularisation", "seed", "frozen_until",
-                 "chemotaxis", "petsc"});
+                 "chemotaxis", "petsc", "solver"});
   ReactionDiffusion r;
   std::vector<std::string> models;
   for (std::size_t i = 0; i < generated::reaction_model_count; ++i)
@@ -224,6 +224,9 @@ void read_reaction_diffusion(const Section& top, Scene& s)
     read_petsc_options(rd.section("petsc"), own);
     r.petsc = own;
   }
+  if (rd.has("solver"))
+    r.solver = rd.choice("solver", Numerics::Solver::direct,
+                         {{"direct", Numerics::Solver::direct}, {"reuse", Numerics::Solver::reuse}});
   s.reaction_diffusion = r;
 }
 } // namespace cellphase::scene

@@ -103,6 +103,17 @@ double flow_reynolds(const Scene& s)
   return s.flow && s.flow->equations == FlowEquations::navier_stokes ? s.numbers.Re : 0.0;
 }
 
+Numerics::Solver flow_solver(const Scene& s)
+{
+  return s.flow && s.flow->solver ? *s.flow->solver : s.numerics.solver;
+}
+
+Numerics::Solver reaction_diffusion_solver(const Scene& s)
+{
+  return s.reaction_diffusion && s.reaction_diffusion->solver ? *s.reaction_diffusion->solver
+                                                              : s.numerics.solver;
+}
+
 double flow_capillary(const Scene& s)
 {
   if (is_helfrich(s.phase_field.model))

@@ -324,6 +324,8 @@ struct Flow
   /// boundary that carries no tag.
   std::map<std::string, WallSpec> tag_walls;
   std::map<std::string, std::string> petsc; ///< options of the flow solver (prefix flow_)
+  /// How the flow's matrices are solved; absent: numerics.solver (see flow_solver).
+  std::optional<Numerics::Solver> solver;
   std::optional<Inextensibility> inextensibility; ///< absent: the membrane may stretch
   /// beta of forms/helfrich_hm1.py: a mobility on the step's change of the interface
   /// potential, -div(beta grad(w^{n+1} - w^n)); 0: the thesis' explicit split.
@@ -377,6 +379,8 @@ struct ReactionDiffusion
   std::optional<Chemotaxis> chemotaxis;
   /// Options of the species' solver (prefix rd_); absent: those of numerics.petsc.
   std::optional<std::map<std::string, std::string>> petsc;
+  /// How the species' matrices are solved; absent: numerics.solver.
+  std::optional<Numerics::Solver> solver;
 };
 
 /// Orientation field of an active polar gel in the cell (chapter 6, (6.16)-(6.17)),
@@ -449,6 +453,10 @@ const char* to_string(OutputFormat f);
 bool couples_to_flow(Model m);
 /// Re of the momentum equation: 0 for Stokes (explicitly or because numbers.Re = 0).
 double flow_reynolds(const Scene& s);
+/// flow.solver, else numerics.solver.
+Numerics::Solver flow_solver(const Scene& s);
+/// reaction_diffusion.solver, else numerics.solver.
+Numerics::Solver reaction_diffusion_solver(const Scene& s);
 /// Prefactor of the interface force (dE/dphi) grad phi: 3 sigma / (2 sqrt2) = 1/Ca (3.13)
 /// for Cahn-Hilliard (mu unscaled there), 1 for the Helfrich models (dE/dphi itself).
 double flow_capillary(const Scene& s);

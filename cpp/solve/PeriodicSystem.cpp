@@ -6,7 +6,8 @@ namespace cellphase
 PeriodicSystem::PeriodicSystem(std::shared_ptr<const Form> a, std::shared_ptr<const Form> L,
                                const scene::Scene& scene, MPI_Comm comm,
                                const std::string& prefix,
-                               const std::map<std::string, std::string>& options)
+                               const std::map<std::string, std::string>& options,
+                               scene::Numerics::Solver solver)
     : a_(std::move(a)), L_(std::move(L))
 {
   auto W = a_->function_spaces()[0];
@@ -16,7 +17,7 @@ PeriodicSystem::PeriodicSystem(std::shared_ptr<const Form> a, std::shared_ptr<co
   b_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
   x_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
   solver_ = std::make_unique<LinearSolver>(comm, prefix, options);
-  if (scene.numerics.solver == scene::Numerics::Solver::reuse)
+  if (solver == scene::Numerics::Solver::reuse)
     solver_->reuse_factorisations(1e-10, 30, 8);
 }
 

@@ -17,10 +17,12 @@ namespace cellphase
 class PeriodicSystem
 {
 public:
-  /// a and L on the same space; `prefix` and `options` are the solver's.
+  /// a and L on the same space; `prefix`, `options` and `solver` (direct or reused
+  /// factorisations) are the solver's.
   PeriodicSystem(std::shared_ptr<const Form> a, std::shared_ptr<const Form> L,
                  const scene::Scene& scene, MPI_Comm comm, const std::string& prefix,
-                 const std::map<std::string, std::string>& options);
+                 const std::map<std::string, std::string>& options,
+                 scene::Numerics::Solver solver);
 
   /// Assembles A and b from the forms' coefficients now, factorises (or reuses), solves;
   /// `what` names the system in an error. The timings of assembly, factorisation, solve.

@@ -106,6 +106,15 @@ TEST(SceneFlow, DefaultsAndDerivedNumbers)
   EXPECT_EQ(flow_reynolds(re0), 0.0);
   EXPECT_PRED_FORMAT2(::testing::IsSubstring, "Stokes (Re = 0, as numbers.Re is 0",
                       check_report(re0));
+  // The flow's solver: numerics.solver unless flow.solver says otherwise.
+  EXPECT_EQ(flow_solver(s), Numerics::Solver::direct);
+  EXPECT_EQ(flow_solver(parse_scene(with_flow("flow: {}\n"), "f.yaml", {"numerics.solver=reuse"})),
+            Numerics::Solver::reuse);
+  EXPECT_EQ(flow_solver(parse_scene(with_flow("flow: {solver: reuse}\n"), "f.yaml")),
+            Numerics::Solver::reuse);
+  EXPECT_EQ(flow_solver(parse_scene(with_flow("flow: {solver: direct}\n"), "f.yaml",
+                                    {"numerics.solver=reuse"})),
+            Numerics::Solver::direct);
   // velocity and pressure may be written
   const Scene out = parse_scene(with_flow("flow: {}\noutput: {fields: [phi, v, p]}\n"), "f.yaml");
   EXPECT_EQ(out.output.fields.size(), 3u);
@@ -146,6 +155,8 @@ TEST(SceneFlow, Errors)
                "flow.viscousity: unknown key; allowed keys in flow: equations, density");
   EXPECT_ERROR(with_flow("flow: {equations: euler}\n"),
                "flow.equations: unknown value \"euler\"; allowed: stokes, navier_stokes");
+  EXPECT_ERROR(with_flow("flow: {solver: lu}\n"),
+               "flow.solver: unknown value \"lu\"; allowed: direct, reuse");
   EXPECT_ERROR(with_flow("flow: {density: {inside: 0}}\n"),
                "flow.density.inside: found 0, expected a number > 0");
   EXPECT_ERROR(with_flow("flow: {density: {middle: 1}}\n"), "flow.density.middle: unknown key");

@@ -393,3 +393,14 @@ def test_species_solver_options_of_their_own(tmp_path):
         diff = max(abs(a - b) / max(1.0, abs(a)) for a, b in zip(direct[key], gmres[key]))
         print(f"{key}: GMRES against LU {diff:.1e}")
         assert diff < 1e-9, key
+
+
+def test_species_solver_key_is_checked(tmp_path):
+    # reaction_diffusion.solver picks direct or reused factorisations for the species alone.
+    scene = cell_scene()
+    scene["reaction_diffusion"]["solver"] = "reuse"
+    assert check(scene, tmp_path).returncode == 0
+    scene["reaction_diffusion"]["solver"] = "lu"
+    proc = check(scene, tmp_path)
+    assert proc.returncode == 2 and 'reaction_diffusion.solver: unknown value "lu"' in proc.stderr, \
+        proc.stderr

@@ -65,3 +65,23 @@ def test_reused_factorisations_give_the_direct_solves_observables(tmp_path, case
         assert max(iterations) <= per_step
     # direct has no such columns: its counts are in the run's last line only
     assert not any(k.endswith("_krylov_iterations") for k in direct)
+
+
+def test_flow_solver_reuses_the_flows_factors_alone(tmp_path):
+    # flow.solver: reuse with numerics.solver: direct: the flow keeps its factors, the phase
+    # field factorises every step. The observables equal the direct run's as above.
+    scene = dict(bubble_scene(0.2), output={})
+    runs = {}
+    for name, flow in (("direct", scene["flow"]), ("flow-reuse", dict(scene["flow"], solver="reuse"))):
+        (tmp_path / name).mkdir()
+        runs[name] = run_scene(dict(scene, flow=flow), tmp_path / name)
+    direct, flow_only = runs["direct"], runs["flow-reuse"]
+    for key, bound in CASES["bubble"][1].items():
+        diff = largest_difference(direct, flow_only, key)
+        print(f"flow.solver reuse {key}: against direct {diff:.1e}")
+        assert diff < bound, key
+    steps = len(flow_only["step"]) - 1
+    assert flow_only["flow_factorisations"][-1] <= steps / 2.5
+    assert max(flow_only["flow_krylov_iterations"][1:]) <= 8
+    assert not any(k.startswith("phase_field_") and k.endswith("_krylov_iterations")
+                   for k in flow_only)
