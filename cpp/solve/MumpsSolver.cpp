@@ -1,4 +1,5 @@
 #include "solve/MumpsSolver.h"
+#include "solve/AijBlocks.h"
 #include <algorithm>
 #include <cstring>
 #include <numeric>
@@ -7,6 +8,10 @@ namespace cellphase
 {
 namespace
 {
+using aij::Blocks;
+using aij::blocks_of;
+using aij::is_type;
+
 // MUMPS' arrays are 1-based, as in its Fortran user guide.
 MUMPS_INT& icntl(DMUMPS_STRUC_C& id, int i) { return id.icntl[i - 1]; }
 double& cntl(DMUMPS_STRUC_C& id, int i) { return id.cntl[i - 1]; }
@@ -72,31 +77,6 @@ void release(Mat seq, Csr& c)
   MatRestoreRowIJ(seq, 0, PETSC_FALSE, PETSC_FALSE, &c.rows, &c.ia, &c.ja, &done);
   if (c.values)
     MatSeqAIJRestoreArrayRead(seq, &c.values);
-}
-
-bool is_type(Mat A, const char* type)
-{
-  PetscBool same = PETSC_FALSE;
-  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), type, &same);
-  return same;
-}
-
-/// The diagonal and off-diagonal blocks of A (a sequential matrix is its own diagonal
-/// block) and the global column of every off-diagonal column.
-struct Blocks
-{
-  Mat diagonal = nullptr, off_diagonal = nullptr;
-  const PetscInt* off_columns = nullptr;
-};
-
-Blocks blocks_of(Mat A)
-{
-  Blocks b;
-  if (is_type(A, MATSEQAIJ))
-    b.diagonal = A;
-  else
-    MatMPIAIJGetSeqAIJ(A, &b.diagonal, &b.off_diagonal, &b.off_columns);
-  return b;
 }
 } // namespace
 

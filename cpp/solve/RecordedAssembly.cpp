@@ -1,4 +1,5 @@
 #include "solve/RecordedAssembly.h"
+#include "solve/AijBlocks.h"
 #include <algorithm>
 #include <numeric>
 
@@ -6,30 +7,8 @@ namespace cellphase
 {
 namespace
 {
-bool is_type(Mat A, const char* type)
-{
-  PetscBool same = PETSC_FALSE;
-  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), type, &same);
-  return same;
-}
-
-/// The diagonal and off-diagonal blocks (a sequential matrix is its own diagonal block)
-/// and the global column of each off-diagonal column.
-struct Blocks
-{
-  Mat diagonal = nullptr, off_diagonal = nullptr;
-  const PetscInt* off_columns = nullptr;
-};
-
-Blocks blocks_of(Mat A)
-{
-  Blocks b;
-  if (is_type(A, MATSEQAIJ))
-    b.diagonal = A;
-  else if (is_type(A, MATMPIAIJ))
-    MatMPIAIJGetSeqAIJ(A, &b.diagonal, &b.off_diagonal, &b.off_columns);
-  return b;
-}
+using aij::Blocks;
+using aij::blocks_of;
 
 /// The scalar local indices of a call: blocked ones unrolled by the block size.
 void unroll(std::span<const std::int32_t> idx, int bs, std::vector<PetscInt>& out)
