@@ -13,9 +13,9 @@ study's own report, benchmarks/results/gtpase-convergence.csv with the columns
 gtpase-convergence.md (the table with the ROC of each quantity, and the cost of a step
 split between the sub-problems) and gtpase-convergence.png (the quantities against time).
 The finest finished member is the reference (its errors are empty); unfinished members are
-listed above the table. With --mpi 2 on 2 cores the
-members take about 16 min (eps = 0.06), 36 min (0.042) and 70 min (0.03); 0.021 about
-twice the 0.03 member.
+listed above the table. With --mpi 2 on 2 cores the eps = 0.03 member takes about
+40 min (benchmarks/results/gtpase-convergence.md, "What it shows"), the coarser ones a
+fraction of that, 0.021 about three times the 0.03 member.
 """
 import argparse
 import csv
