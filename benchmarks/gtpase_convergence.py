@@ -15,7 +15,7 @@ split between the sub-problems) and gtpase-convergence.png (the quantities again
 The finest finished member is the reference (its errors are empty); unfinished members are
 listed above the table. With --mpi 2 on 2 cores the eps = 0.03 member takes about
 40 min (benchmarks/results/gtpase-convergence.md, "What it shows"), the coarser ones a
-fraction of that, 0.021 about three times the 0.03 member.
+fraction of that; 0.021 several times longer (not measured with this program).
 """
 import argparse
 import csv
