@@ -90,10 +90,9 @@ void RecordedAssembly::record(Mat A, Record& r, const Assembler& assemble,
     return [&, blocked](const std::span<const std::int32_t>& rs,
                         const std::span<const std::int32_t>& cs, const std::span<const T>& vals)
     {
-      r.calls.push_back({blocked, std::int32_t(rs.size()), std::int32_t(cs.size()),
-                         rs.empty() ? -1 : rs[0], cs.empty() ? -1 : cs[0]});
-      r.logged_rows.insert(r.logged_rows.end(), rs.begin(), rs.end());
-      r.logged_cols.insert(r.logged_cols.end(), cs.begin(), cs.end());
+      r.calls.push_back({blocked, std::int32_t(rs.size()), std::int32_t(cs.size())});
+      r.rows.insert(r.rows.end(), rs.begin(), rs.end());
+      r.cols.insert(r.cols.end(), cs.begin(), cs.end());
       rows.assign(rs.begin(), rs.end());
       cols.assign(cs.begin(), cs.end());
       return int(blocked ? MatSetValuesBlockedLocal(A, PetscInt(rows.size()), rows.data(),
@@ -108,10 +107,8 @@ void RecordedAssembly::record(Mat A, Record& r, const Assembler& assemble,
   finalise();
   MatGetNonzeroState(A, &r.nonzero_state);
   r.ready = find_positions(A, r);
-  r.logged_rows = {};
-  r.logged_cols = {};
   if (!r.ready)
-    r.positions = {};
+    r = Record{};
 }
 
 bool RecordedAssembly::find_positions(Mat A, Record& r)
@@ -158,8 +155,8 @@ bool RecordedAssembly::find_positions(Mat A, Record& r)
   const PetscInt owned_rows = last_row - first_row;
   for (const Call& call : r.calls)
   {
-    std::span<const std::int32_t> rs(r.logged_rows.data() + next_row, call.rows);
-    std::span<const std::int32_t> cs(r.logged_cols.data() + next_col, call.cols);
+    std::span<const std::int32_t> rs(r.rows.data() + next_row, call.rows);
+    std::span<const std::int32_t> cs(r.cols.data() + next_col, call.cols);
     next_row += call.rows;
     next_col += call.cols;
     unroll(rs, call.blocked ? int(rbs) : 1, rows);
@@ -226,7 +223,7 @@ bool RecordedAssembly::replay(Mat A, const Record& r, const Assembler& assemble)
   bool matches = true;
   {
     Values diagonal(b.diagonal), off_diagonal(b.off_diagonal);
-    std::size_t next_call = 0, next_position = 0;
+    std::size_t next_call = 0, next_row = 0, next_col = 0, next_position = 0;
     std::vector<PetscInt> rows, cols;
     auto replayed = [&](bool blocked)
     {
@@ -238,10 +235,14 @@ bool RecordedAssembly::replay(Mat A, const Record& r, const Assembler& assemble)
         if (next_call == r.calls.size())
           return (matches = false), 0;
         const Call& c = r.calls[next_call++];
-        if (c.blocked != blocked || c.rows != std::int32_t(rs.size())
-            || c.cols != std::int32_t(cs.size()) || (!rs.empty() && c.first_row != rs[0])
-            || (!cs.empty() && c.first_col != cs[0]))
+        const bool same = c.blocked == blocked && c.rows == std::int32_t(rs.size())
+                          && c.cols == std::int32_t(cs.size())
+                          && std::equal(rs.begin(), rs.end(), r.rows.begin() + next_row)
+                          && std::equal(cs.begin(), cs.end(), r.cols.begin() + next_col);
+        if (!same)
           return (matches = false), 0;
+        next_row += rs.size();
+        next_col += cs.size();
         unroll(rs, blocked ? int(rbs) : 1, rows);
         const std::size_t ncols = cs.size() * (blocked ? cbs : 1);
         for (std::size_t i = 0; i < rows.size(); ++i)

@@ -9,7 +9,7 @@
 // array of the diagonal or off-diagonal block. Later assemblies of the same form into the
 // same pattern add there directly (rows owned by other ranks still go through PETSc). The
 // same values are added in the same order, so the sums are PETSc's bit for bit.
-// Each call of the assembler is checked against the record (sizes, first row and column);
+// Each call of the assembler is checked against the record (the same rows and columns);
 // a mismatch on any rank starts the assembly again through PETSc on every rank and records
 // anew.
 #pragma once
@@ -44,14 +44,14 @@ private:
   struct Call
   {
     bool blocked;
-    std::int32_t rows, cols, first_row, first_col;
+    std::int32_t rows, cols; ///< how many of the record's rows and columns it takes
   };
   struct Record
   {
     const void* form = nullptr;
     PetscObjectState nonzero_state = -1;
     std::vector<Call> calls;
-    std::vector<std::int32_t> logged_rows, logged_cols; ///< while recording
+    std::vector<std::int32_t> rows, cols; ///< the local indices of every call, in turn
     std::vector<std::int64_t> positions; ///< per owned-row entry: diagonal block's value
                                          ///< index, or its count plus the off-diagonal one's
     bool ready = false;
