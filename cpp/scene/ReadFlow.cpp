@@ -258,8 +258,7 @@ void read_flow(const Section& top, Scene& s)
   }
   read_petsc_options(f.section("petsc"), flow.petsc);
   if (f.has("solver"))
-    flow.solver = f.choice("solver", Numerics::Solver::direct,
-                           {{"direct", Numerics::Solver::direct}, {"reuse", Numerics::Solver::reuse}});
+    flow.solver = read_solver(f, Numerics::Solver::direct);
   flow.inextensibility = read_inextensibility(f, m);
   s.flow = flow;
   check_cell_viscosities(top, s);

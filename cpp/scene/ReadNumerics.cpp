@@ -178,8 +178,7 @@ void read_numerics(const Section& top, Scene& s)
   read_petsc_options(n.section("petsc"), num.petsc);
   if (n.has("split"))
     num.split = n.strings("split"); // checked against the plan in check_split
-  num.solver = n.choice("solver", num.solver,
-                        {{"direct", Numerics::Solver::direct}, {"reuse", Numerics::Solver::reuse}});
+  num.solver = read_solver(n, num.solver);
   num.time_scheme = n.choice("time_scheme", num.time_scheme,
                              {{"euler", Numerics::TimeScheme::euler},
                               {"bdf2", Numerics::TimeScheme::bdf2}});

@@ -37,4 +37,10 @@ void read_petsc_options(const Section& p, std::map<std::string, std::string>& ou
     check_mumps_control(v, key, out[key]);
   }
 }
+
+Numerics::Solver read_solver(const Section& s, Numerics::Solver fallback)
+{
+  return s.choice("solver", fallback,
+                  {{"direct", Numerics::Solver::direct}, {"reuse", Numerics::Solver::reuse}});
+}
 } // namespace cellphase::scene

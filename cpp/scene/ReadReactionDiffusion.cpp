@@ -225,8 +225,7 @@ void read_reaction_diffusion(const Section& top, Scene& s)
     r.petsc = own;
   }
   if (rd.has("solver"))
-    r.solver = rd.choice("solver", Numerics::Solver::direct,
-                         {{"direct", Numerics::Solver::direct}, {"reuse", Numerics::Solver::reuse}});
+    r.solver = read_solver(rd, Numerics::Solver::direct);
   s.reaction_diffusion = r;
 }
 } // namespace cellphase::scene

@@ -26,6 +26,8 @@ void read_output(const yaml::Section& top, Scene& s);       ///< output (after f
 /// values, passed on as text; a MUMPS control (mat_mumps_icntl_<1..60>, mat_mumps_cntl_<1..15>)
 /// must be an integer or a number.
 void read_petsc_options(const yaml::Section& p, std::map<std::string, std::string>& out);
+/// numerics.solver, flow.solver, reaction_diffusion.solver: `direct` or `reuse`.
+Numerics::Solver read_solver(const yaml::Section& s, Numerics::Solver fallback);
 /// How messages and reports name a cell: cells[1], or cells[1] ("rbc") if it has a name.
 std::string cell_label(std::size_t i, const Cell& c);
 /// Checks across sections: cells inside the domain and disjoint, mesh resolution reachable.
