@@ -1,5 +1,6 @@
 #include "compat/Periodic.h"
 #include "compat/PeriodicData.h"
+#include "solve/Assemble.h"
 // dolfinx_mpc 0.5 headers: PeriodicConstraint.h has no include guard and lifting.h defines
 // non-inline functions, so both may be included by this file only. The umbrella header
 // dolfinx_mpc.h is unusable (it includes <utils.h> & co. without the folder name).
@@ -160,16 +161,7 @@ void PeriodicConstraint::assemble_matrix(Mat A, const Form& a, const BCs& bcs) c
     else
       fem::assemble_matrix(add_block, a, bcs);
   };
-  auto finalise = [&]
-  {
-    // INSERT (after a flush) rather than ADD: a dof in two BCs (a corner of two walls)
-    // must still get a diagonal of 1, not 2.
-    MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
-    MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
-    fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *V_, bcs);
-    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
-  };
+  auto finalise = [&] { finish_matrix(A, *V_, bcs); };
   recorded_->assemble(A, &a, assemble, finalise);
 }
 

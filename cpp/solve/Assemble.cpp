@@ -13,11 +13,16 @@ void assemble_matrix(Mat A, const Form& a, const BCs& bcs)
 {
   MatZeroEntries(A);
   fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), a, bcs);
+  finish_matrix(A, *a.function_spaces()[0], bcs);
+}
+
+void finish_matrix(Mat A, const Space& V, const BCs& bcs)
+{
   // INSERT (after a flush) rather than ADD: a dof shared by two BCs (a corner of two
   // walls) must still get a diagonal of 1, not 2.
   MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
   MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
-  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *a.function_spaces()[0], bcs);
+  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), V, bcs);
   MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
   MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
 }
