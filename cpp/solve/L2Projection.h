@@ -2,6 +2,11 @@
 // space's mass matrix M, factorised once per mesh (it is positive definite, so L D L^T).
 // The explicit forces on the flow (interface, protrusion, orientation) and the chemical
 // potentials that enter other sub-problems as coefficients are made this way.
+//
+// On a vector space (block size k) the mass matrix of inner(u, w) dx is k copies of the
+// scalar one, one per component, with nothing between components. Then only the scalar
+// matrix is factorised, and the k components are solved with it as k right-hand sides:
+// a factorisation of a k-times smaller matrix with about k^2 times fewer entries.
 #pragma once
 #include "compat/Dolfinx.h"
 #include "solve/LinearSolver.h"
@@ -24,8 +29,12 @@ public:
     project(std::vector<const Form*>{&form}, out, what);
   }
 
+  /// Components solved with one scalar mass matrix (1: the matrix of the whole space).
+  int components() const { return components_; }
+
 private:
   std::unique_ptr<dolfinx::la::petsc::Matrix> mass_;
   std::unique_ptr<LinearSolver> solver_;
+  int components_ = 1;
 };
 } // namespace cellphase
