@@ -123,6 +123,7 @@ void ReactionDiffusionSubProblem::attach(FieldRegistry& fields)
   }
   if (estimate_)
     estimate_->attach(fields);
+  node_x_ = V->tabulate_dof_coordinates(false); // for the observables, once per mesh
   phi_old_ = std::make_shared<Function>(V);
   std::copy(phi_->x()->array().begin(), phi_->x()->array().end(),
             phi_old_->x()->mutable_array().begin());
@@ -325,7 +326,7 @@ std::pair<double, double>
 ReactionDiffusionSubProblem::membrane_extremum(double sign, const std::array<double, 3>& centre) const
 {
   const auto& c = species_[protrusion_];
-  const auto x = c->function_space()->tabulate_dof_coordinates(false);
+  const auto& x = node_x_;
   auto c1 = c->x()->array();
   auto phi = phi_->x()->array();
   const std::int32_t owned = c->function_space()->dofmap()->index_map->size_local();

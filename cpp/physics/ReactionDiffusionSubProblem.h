@@ -78,6 +78,8 @@ private:
   double last_wall_ = 0; ///< wall time of the last step (observables column wall_rd)
   int last_iterations_ = 0; ///< GMRES iterations of the last step (numerics.solver: reuse)
 
+  std::vector<double> node_x_; ///< coordinates of the species' nodes on this mesh (3 per node)
+
   // Amounts after the last step: a remesh scales the moved species back to them.
   std::vector<double> kept_;
   double time_ = 0; ///< time of the species (checkpointed: the chemotactic signal's clock)
