@@ -69,6 +69,33 @@ bdf_c0, bdf_c1, bdf_c2, bdf_w = bdf2_constants()
 common = linear_part(phi)  # the stabilised variant's linear part
 rhs_common = rhs_part(phi0, kappa0)
 
+# Coupling stabilisation (flow.coupling_stabilisation = beta), as in helfrich_hm1.py: the flow
+# of the split saw the force (dE/dphi)^n grad phi^n (5.9), and this explicit bending force
+# limits dt to about eta h^3 Be (eps 0.021 of Table 5.2: dt = 7e-4 grows a grid-scale mode,
+# 3.5e-4 runs). An extra relaxation on the step's change of the bending part
+# B = (Lap mu - W0''(phi) mu / eps^2) / Be of dE/dphi,
+#   d_t phi + v . grad phi = -gamma dE/dphi^{n+1} - beta (B^{n+1} - B^n),
+# damps that mode: it is O(dt), zero at a steady state, and zero for beta = 0. B^{n+1} is
+# linearised about (phi^n, mu^n) (exact there, so the two parts cancel at phi^{n+1} = phi^n).
+# The plain forms (a, L) stay without it: the *_coupled variants are assembled only when
+# beta > 0 (its degree-7 quadrature would add 40 % to the phase field's assembly).
+beta_coupling, = constants("beta_coupling")
+dx_coupling = dx(metadata={"quadrature_degree": 7})
+
+
+def bending_part(phi_, mu_):
+    """Be B tested with psi (Lap mu by parts), the part of the row that the mobility term g
+    carries, linearised about (phi^n, mu^n); the linearisation's constant part cancels
+    between the two sides, so bending_part(phi0, mu0) is the right-hand side."""
+    return (-inner(grad(mu_), grad(psi))
+            - (ddW0(phi0, eps, H0) * mu_ + dddW0(phi0, eps, H0) * mu0 * phi_) * psi / eps**2)
+
+
+coupling_lhs = beta_coupling / Be * bending_part(phi, mu) * dx_coupling
+coupling_rhs = beta_coupling / Be * bending_part(phi0, mu0) * dx_coupling
+a_coupled, L_coupled = a + coupling_lhs, L + coupling_rhs
+a_bdf2_coupled, L_bdf2_coupled = a_bdf2 + coupling_lhs, L_bdf2 + coupling_rhs
+
 # Stabilised: W0''(phi) mu ~ S mu + (W0''(phi^n) - S) mu^n,  W0'(phi) ~ W0'(phi^n) + S(phi - phi^n).
 # S = 2 = W0''(-1) makes both exact in the bulk phase; the matrix is constant.
 a_stab = common + (- g / eps**2 * S * mu * psi + S / eps * phi * nu) * dx
@@ -99,4 +126,5 @@ L_dE = ((-inner(grad(mu_h), grad(q)) - ddW0(phi_h, eps, H0) * mu_h * q / eps**2
          + (lam_v + lam_a * kappa_of(phi_h, mu_h, H0)) * q) / Be
         + sigma * kappa_of(phi_h, mu_h, H0) * q) * dxq                   # (1/Ca) kappa, (3.84)
 
-forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu, L_dE, a_bdf2, L_bdf2, load_a_bdf2]
+forms = [a, L, a_stab, L_stab, load_v, load_a, a_mu, L_mu, L_dE, a_bdf2, L_bdf2, load_a_bdf2,
+         a_coupled, L_coupled, a_bdf2_coupled, L_bdf2_coupled]

@@ -68,6 +68,10 @@ ModelForms model_forms(scene::Model model, int dim)
   f.a_bdf2 = required(file, dim, "a_bdf2");
   f.L_bdf2 = required(file, dim, "L_bdf2");
   f.load_a_bdf2 = optional(file, dim, "load_a_bdf2");
+  f.a_coupled = optional(file, dim, "a_coupled");
+  f.L_coupled = optional(file, dim, "L_coupled");
+  f.a_bdf2_coupled = optional(file, dim, "a_bdf2_coupled");
+  f.L_bdf2_coupled = optional(file, dim, "L_bdf2_coupled");
   f.space = space(file, dim, "a");
   // Every model but Allen-Cahn carries the advection term with coefficient "v".
   f.advected = file != "allen_cahn";

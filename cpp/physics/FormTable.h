@@ -19,6 +19,13 @@ struct ModelForms
   ufcx_form* a_bdf2 = nullptr;
   ufcx_form* L_bdf2 = nullptr;
   ufcx_form* load_a_bdf2 = nullptr; ///< load_a with the extrapolated curvature
+  /// a, L, a_bdf2, L_bdf2 with the coupling stabilisation (flow.coupling_stabilisation > 0;
+  /// helfrich_l2.py, whose plain forms leave its costly quadrature out; constant
+  /// "beta_coupling")
+  ufcx_form* a_coupled = nullptr;
+  ufcx_form* L_coupled = nullptr;
+  ufcx_form* a_bdf2_coupled = nullptr;
+  ufcx_form* L_bdf2_coupled = nullptr;
   ufcx_space_fn space = nullptr; ///< space of the state coefficient "u0" of `a`, and of
                                  ///< the advection velocity "v" (models with one)
   bool advected = false;         ///< `a` has the advection term with coefficient "v"

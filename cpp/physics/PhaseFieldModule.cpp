@@ -60,6 +60,14 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
 {
   for (const auto& h : scene::history_fields(scene))
     history_names_.push_back(h);
+  // The L2 flows' coupling stabilisation lives in forms of its own (forms/helfrich_l2.py).
+  if (scene.flow && scene.flow->coupling_stabilisation > 0 && forms_.a_coupled)
+  {
+    forms_.a = forms_.a_coupled;
+    forms_.L = forms_.L_coupled;
+    forms_.a_bdf2 = forms_.a_bdf2_coupled;
+    forms_.L_bdf2 = forms_.L_bdf2_coupled;
+  }
   const auto& pf = scene.phase_field;
   const auto& nu = scene.numerics;
   dt_ = constant(nu.dt);

@@ -185,7 +185,13 @@ void flow_report(const Scene& s, Report& r)
                                          + " grad(w^{n+1} - w^n)) in the phase field's step");
   }
   else if (is_helfrich(s.phase_field.model))
+  {
     r.line("  interface force", "(dE/dphi) grad phi (3.81), dE/dphi of (3.84) projected on P2");
+    if (f.coupling_stabilisation > 0)
+      r.line("  stabilised split", "-" + fmt(f.coupling_stabilisation)
+                                         + " (B^{n+1} - B^n) in the phase field's step, B the "
+                                           "bending part of dE/dphi");
+  }
   else
     r.line("  interface force", fmt(cap) + " mu grad phi (2.8; 3 sigma/(2 sqrt2) = 1/Ca"
                                     + (f.surface_tension ? ", sigma " + fmt(*f.surface_tension)

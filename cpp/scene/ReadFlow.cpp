@@ -250,10 +250,18 @@ void read_flow(const Section& top, Scene& s)
   }
   if (f.has("coupling_stabilisation"))
   {
-    if (m != Model::helfrich_hm1)
+    // A term of forms/helfrich_hm1.py and forms/helfrich_l2.py (Taylor linearisation: the
+    // stabilised scheme's matrix is constant, and the term would make it change every step).
+    const bool l2 = m == Model::helfrich_lagrange || m == Model::helfrich_penalty;
+    if (m != Model::helfrich_hm1 && !l2)
       f.fail("coupling_stabilisation", std::string("model ") + to_string(m)
                                            + " has no coupling stabilisation; it is a term of "
-                                             "helfrich_hm1");
+                                             "helfrich_hm1, helfrich_lagrange and helfrich_penalty");
+    if (l2 && s.numerics.linearisation != Linearisation::taylor)
+      f.fail("coupling_stabilisation",
+             std::string("model ") + to_string(m)
+                 + " takes it with numerics.linearisation: taylor only (the stabilised "
+                   "linearisation keeps the matrix constant, which this term would break)");
     flow.coupling_stabilisation = f.number("coupling_stabilisation", non_negative());
   }
   read_petsc_options(f.section("petsc"), flow.petsc);
