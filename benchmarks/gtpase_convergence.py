@@ -16,7 +16,8 @@ The finest finished member is the reference (its errors are empty); unfinished m
 listed above the table. With --mpi 2 on 2 cores the eps = 0.03 member takes about
 35 min (benchmarks/results/gtpase-convergence.md, "What it shows"), the coarser ones a
 fraction of that. The 0.021 member fails at step 72: the ladder's dt ~ eps exceeds the
-split's time step limit there (about 100 h^3, same report).
+split's time step limit there (about 100 h^3, same report); `flow.coupling_stabilisation`
+(in the study's `set:`, then for every member) lifts it (docs/scenes.md).
 """
 import argparse
 import csv
