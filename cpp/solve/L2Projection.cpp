@@ -1,6 +1,8 @@
 #include "solve/L2Projection.h"
 #include "solve/Assemble.h"
 #include <dolfinx/fem/assembler.h>
+#include <stdexcept>
+#include <string>
 
 namespace cellphase
 {
@@ -87,6 +89,9 @@ void L2Projection::project(const std::vector<const Form*>& forms, Function& out,
     out.x()->scatter_fwd();
     return;
   }
+  if (k != components_)
+    throw std::logic_error("L2Projection: " + what + " onto a space of " + std::to_string(k)
+                           + " components, the mass matrix has " + std::to_string(components_));
   // One right-hand side per component, solved together with the scalar mass matrix.
   const std::int32_t n = map->size_local();
   std::vector<std::unique_ptr<dolfinx::la::Vector<T>>> bc, xc;
