@@ -18,6 +18,10 @@ listed above the table. With --mpi 2 on 2 cores the eps = 0.03 member takes abou
 fraction of that. The 0.021 member fails at step 72: the ladder's dt ~ eps exceeds the
 split's time step limit there (about 100 h^3, same report); `flow.coupling_stabilisation`
 (in the study's `set:`, then for every member) lifts it (docs/scenes.md).
+
+The finished members' time series are kept in benchmarks/results/gtpase-convergence-members
+(python/study_archive.py) and put back into a fresh output directory before the run, so
+the members of an earlier session are not rerun on a new machine.
 """
 import argparse
 import csv
@@ -33,7 +37,9 @@ import study as study_runner  # noqa: E402  (python/study.py)
 from study_file import load_study  # noqa: E402
 from study_report import convergence_errors  # noqa: E402
 from results_csv import hand_written_notes  # noqa: E402
+from study_archive import archive_members, restore_members  # noqa: E402
 
+ARCHIVE = ROOT / "benchmarks" / "results" / "gtpase-convergence-members"
 QUANTITIES = [("center_x", "err_xcm", "x_cm"), ("cell_velocity_x", "err_vcm", "v_cm"),
               ("circularity", "err_circ", "circularity"), ("helfrich_energy", "err_energy",
                                                           "Helfrich energy")]
@@ -101,12 +107,21 @@ def main():
     parser.add_argument("--mpi", type=int, default=1, help="MPI ranks per member")
     parser.add_argument("--report-only", action="store_true")
     parser.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results")
+    parser.add_argument("--archive", type=Path, default=ARCHIVE,
+                        help="finished members' time series, kept in the repository "
+                             f"(default {ARCHIVE.relative_to(ROOT)})")
     args = parser.parse_args()
+    study = load_study(args.study)
+    restored, skipped = restore_members(study, args.archive)
+    for name in restored:
+        print(f"{name}: restored from {args.archive}")
+    for name, why in skipped:
+        print(f"{name}: not restored from {args.archive}: {why}")
     if not args.report_only:
         subprocess.run([sys.executable, str(ROOT / "python" / "study.py"), "run", str(args.study),
                         "--jobs", str(args.jobs), "--mpi", str(args.mpi)], check=False)
         # (exit 1: a member failed or was stopped; the table is made of the finished ones)
-    study = load_study(args.study)
+    archive_members(study, args.archive)
     results, missing = member_results(study)
     errors = convergence_errors(results, [q for q, _, _ in QUANTITIES])
     args.results.mkdir(parents=True, exist_ok=True)

@@ -100,13 +100,18 @@ def first_line(path):
     return next((ln for ln in lines if ln), "")
 
 
+def member_settings(study, member):
+    """The `--set KEY=VALUE` arguments of a member's run (its done marker records them)."""
+    # Studies need the observables only: no field output unless the study sets it.
+    overrides = {"output.every": 0, "output.progress": "false", **member.overrides,
+                 "output.directory": str(study.output / member.name)}
+    return [f"{key}={format_value(value)}" for key, value in overrides.items()]
+
+
 def run_member(exe, study, member, ranks=1, jobs=1):
     """Run one member unless it is done with the same settings; return a status line."""
     run_dir = study.output / member.name
-    # Studies need the observables only: no field output unless the study sets it.
-    overrides = {"output.every": 0, "output.progress": "false", **member.overrides,
-                 "output.directory": str(run_dir)}
-    settings = [f"{key}={format_value(value)}" for key, value in overrides.items()]
+    settings = member_settings(study, member)
     if (run_dir / DONE).is_file():
         # Results of other settings (the study's `set` was edited) are not reused.
         if json.loads((run_dir / DONE).read_text()).get("settings") == settings:

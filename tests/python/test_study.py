@@ -172,6 +172,47 @@ def test_tiny_convergence_study_end_to_end(tmp_path):
     assert proc.returncode == 0 and proc.stdout.count("finished") == 3, proc.stdout
 
 
+def test_archived_members_are_restored_in_a_new_checkout(tmp_path):
+    # A study run in one place, archived, and restored where its output directory is empty
+    # (a new machine): every member is skipped and the report gives the same errors.
+    require_exe()
+    from study_archive import archive_members, restore_members
+    text = ("scene: SCENE\noutput: out\n"
+            "set: {numerics.end_time: 0.01, numerics.mesh.remesh_every: 0}\n"
+            "ladder: {epsilon: [0.16, 0.113, 0.08], rules: "
+            "{resolution_times_epsilon: 0.48, dt_over_epsilon: 0.05}}\n"
+            "observables: [volume, surface]\n")
+    first, second = tmp_path / "first", tmp_path / "second"
+    first.mkdir(), second.mkdir()
+    env = {**os.environ, "CELLPHASE_EXE": EXE}
+    run = [sys.executable, str(STUDY), "run"]
+    proc = subprocess.run(run + [str(write_study(first, text))], capture_output=True, text=True,
+                          env=env, timeout=60)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    archive = tmp_path / "archive"
+    assert archive_members(load_study(first / "study.yaml"), archive) == \
+        ["eps0.16", "eps0.113", "eps0.08"]
+    header = (archive / "eps0.08.csv").read_text().splitlines()[0].split(",")
+    assert {"time", "step", "dofs", "volume", "surface", "wall_solve"} <= set(header)
+    assert "output.directory" not in (archive / "eps0.08.json").read_text()
+
+    path = write_study(second, text)
+    assert restore_members(load_study(path), archive) == (["eps0.16", "eps0.113", "eps0.08"], [])
+    proc = subprocess.run(run + [str(path)], capture_output=True, text=True, env=env, timeout=60)
+    assert proc.returncode == 0 and proc.stdout.count("skipped") == 3, proc.stdout
+    table = [ln for ln in (first / "out" / "report.md").read_text().splitlines() if "| 0.1" in ln]
+    again = [ln for ln in (second / "out" / "report.md").read_text().splitlines() if "| 0.1" in ln]
+    # The same errors and ROC (the wall time and peak memory columns come from the archive).
+    assert [ln.split("|")[6:] for ln in table] == [ln.split("|")[6:] for ln in again]
+
+    # An archive made with other settings is not restored into an edited study.
+    edited = tmp_path / "edited"
+    edited.mkdir()
+    path = write_study(edited, text.replace("remesh_every: 0", "remesh_every: 1"))
+    restored, skipped = restore_members(load_study(path), archive)
+    assert restored == [] and [name for name, _ in skipped] == ["eps0.16", "eps0.113", "eps0.08"]
+
+
 def test_hard_case_registry_loads_and_measures():
     import hard_cases
     cases = [hard_cases.load_case(p) for p in sorted(hard_cases.REGISTRY.glob("*.yaml"))]
