@@ -31,6 +31,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from cellphase_results import ResultsError, read_observables  # noqa: E402
 from study_file import StudyError, format_value, load_study  # noqa: E402
+from study_progress import ProgressWatch, member_end_time  # noqa: E402
 from study_report import write_convergence_report, write_sweep_report  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -108,8 +109,9 @@ def member_settings(study, member):
     return [f"{key}={format_value(value)}" for key, value in overrides.items()]
 
 
-def run_member(exe, study, member, ranks=1, jobs=1):
-    """Run one member unless it is done with the same settings; return a status line."""
+def run_member(exe, study, member, ranks=1, jobs=1, watch=None):
+    """Run one member unless it is done with the same settings; return a status line.
+    `watch` (a ProgressWatch) reports its progress while it runs."""
     run_dir = study.output / member.name
     settings = member_settings(study, member)
     if (run_dir / DONE).is_file():
@@ -128,12 +130,17 @@ def run_member(exe, study, member, ranks=1, jobs=1):
         shutil.rmtree(run_dir, ignore_errors=True)  # a partial, failed or outdated attempt
         run_dir.mkdir(parents=True)
     (run_dir / "command.txt").write_text(" ".join(mpi_prefix(ranks, jobs) + args) + "\n")
+    if watch:
+        watch.started(member.name, run_dir, member_end_time(study.scene, member.overrides))
     try:
         code, wall, peak = run_command(mpi_prefix(ranks, jobs) + args, run_dir,
                                        env={"OPENBLAS_NUM_THREADS": "1"} if ranks > 1 else None)
     except OSError as e:  # the executable vanished or is being rebuilt: this member fails
         (run_dir / "stderr.txt").write_text(f"cannot start {args[0]}: {e}\n")
         code, wall, peak = -1, 0.0, 0.0
+    finally:
+        if watch:
+            watch.finished(member.name)
     attempts = (earlier or []) + [wall]
     record = {"exit": code, "wall": sum(attempts), "peak_mb": peak, "ranks": ranks,
               "settings": settings, "attempts": attempts}
@@ -220,6 +227,9 @@ def main(argv=None):
     run_p.add_argument("--mpi", type=int, default=1, help="MPI ranks per member (default 1)")
     run_p.add_argument("--exe", help="cellphase executable (default: $CELLPHASE_EXE, "
                                      "else build/cellphase)")
+    run_p.add_argument("--progress", type=float, default=60, metavar="SECONDS",
+                       help="print each running member's simulated time and an estimate of "
+                            "the time left every SECONDS (default 60; 0: never)")
     rep_p = sub.add_parser("report", help="rewrite the report from the existing results")
     rep_p.add_argument("study", help="study file (YAML)")
     a = parser.parse_args(argv)
@@ -233,11 +243,13 @@ def main(argv=None):
             print(f"{len(study.members)} members in {study.output}", flush=True)
             for signum in (signal.SIGUSR1, signal.SIGINT, signal.SIGTERM):
                 signal.signal(signum, Running.stop)
+            watch = ProgressWatch(a.progress)
             with ThreadPoolExecutor(max_workers=a.jobs) as pool:
-                futures = [pool.submit(run_member, exe, study, m, a.mpi, a.jobs)
+                futures = [pool.submit(run_member, exe, study, m, a.mpi, a.jobs, watch)
                            for m in study.members]
                 for f in futures:
                     print(f.result(), flush=True)
+            watch.stop.set()
         results = report(study)
     except StudyError as e:
         print(f"error: {e}", file=sys.stderr)

@@ -213,6 +213,29 @@ def test_archived_members_are_restored_in_a_new_checkout(tmp_path):
     assert restored == [] and [name for name, _ in skipped] == ["eps0.16", "eps0.113", "eps0.08"]
 
 
+def test_progress_of_a_running_member(tmp_path):
+    # The watch reads the last whole row of a growing observables.csv (a half-written last
+    # line is ignored), gives the share of the end time and, from the second reading, the
+    # time left at the pace between the readings.
+    from study_progress import ProgressWatch, duration, member_end_time
+    obs = tmp_path / "observables.csv"
+    watch = ProgressWatch(interval=0)
+    watch.started("eps0.1", tmp_path, end_time=2.0)
+    assert "starting" in watch.lines()[0]
+    obs.write_text("step,time,volume\n0,0,1\n1,0.5,1\n2,0.7")
+    first = watch.lines()[0]
+    assert "t = 0.5 of 2 (25 %)" in first and "left" not in first
+    obs.write_text("step,time,volume\n0,0,1\n1,0.5,1\n2,1,1\n3,1.2")
+    second = watch.lines()[0]
+    assert "t = 1 of 2 (50 %)" in second and "left" in second, second
+    watch.finished("eps0.1")
+    assert watch.lines() == []
+    assert duration(42) == "42 s" and duration(125) == "2 min 05 s" and duration(3 * 3600 + 60) == "3 h 01 min"
+    assert member_end_time(AC_SCENE, {"numerics.end_time": 0.25}) == 0.25
+    assert member_end_time(AC_SCENE, {}) > 0  # the scene's own
+    assert member_end_time(tmp_path / "missing.yaml", {}) is None
+
+
 def test_hard_case_registry_loads_and_measures():
     import hard_cases
     cases = [hard_cases.load_case(p) for p in sorted(hard_cases.REGISTRY.glob("*.yaml"))]
