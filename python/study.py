@@ -11,7 +11,9 @@ report is OUTPUT/report.md with error_vs_walltime.png (ladder) or end_state.png 
 Long members can be stopped and continued: `kill -USR1 <pid of study.py>` (or Ctrl-C) stops
 the running members after their current step with a checkpoint (marker OUTPUT/<member>/stopped)
 and starts no others; the next `study.py run` continues them from their checkpoints, and
-their wall time is the sum of the attempts. See docs/studies.md.
+their wall time is the sum of the attempts. While members run, a line per running member
+every minute (--progress) gives its simulated time and an estimate of the time left.
+See docs/studies.md.
 Exit status: 0 all members finished, 1 some member failed, 2 bad study file or usage.
 """
 import argparse
@@ -238,6 +240,9 @@ def main(argv=None):
         if a.command == "run":
             if a.jobs < 1 or a.mpi < 1:
                 raise StudyError("--jobs and --mpi must be at least 1")
+            if a.progress < 0:
+                raise StudyError(f"--progress {a.progress:g}: seconds between progress lines, "
+                                 "0 or more (0: none)")
             exe = find_executable(a.exe)
             study.output.mkdir(parents=True, exist_ok=True)
             print(f"{len(study.members)} members in {study.output}", flush=True)
