@@ -56,7 +56,7 @@ def member_results(study):
             continue
         at = f"at t = {float(r['obs']['time'][-1]):g}, step {int(r['obs']['step'][-1])}; " \
             if r["obs"] is not None else ""
-        missing.append(f"eps = {r['eps']:g}: not finished ({at}{r['status']})")
+        missing.append((r["eps"], f"eps = {r['eps']:g}: not finished ({at}{r['status']})"))
     if len(results) < 2:
         sys.exit(f"{study.output}: fewer than two members finished (run without --report-only)")
     return sorted(results, key=lambda r: -r["eps"]), missing
@@ -140,9 +140,10 @@ def main():
     lines = ["# Table 5.2: convergence of the motile GTPase cell in epsilon", "",
              f"Study: `{args.study.relative_to(ROOT) if args.study.is_relative_to(ROOT) else args.study}`; "
              "relative error norm of section 5.3 against the finest finished member, ROC "
-             "between neighbouring members.", ""] + [f"- {line}" for line in missing] + \
-            (["- The reference is therefore not yet the finest member of the ladder.", ""]
-             if missing else []) + [
+             "between neighbouring members.", ""] + [f"- {line}" for _, line in missing] + \
+            (["- The reference is therefore not yet the finest member of the ladder."]
+             if any(eps < results[-1]["eps"] for eps, _ in missing) else []) + \
+            ([""] if missing else []) + [
              "| eps | dofs | steps | wall s | " + " | ".join(f"{n} err | ROC" for _, _, n in QUANTITIES) + " |",
              "|---" * (4 + 2 * len(QUANTITIES)) + "|"]
     for i, (r, row) in enumerate(zip(results, rows)):
