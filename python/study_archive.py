@@ -12,7 +12,7 @@ import csv
 import json
 from pathlib import Path
 
-from study import DONE, member_settings
+from study import DONE, FAILED, STOPPED, member_settings
 
 KEPT = ["time", "step", "dofs"]  # besides the study's observables and the wall_* columns
 
@@ -63,6 +63,8 @@ def restore_members(study, archive):
             skipped.append((m.name, "archived with other settings (the study was edited)"))
             continue
         run_dir.mkdir(parents=True, exist_ok=True)
+        for marker in (FAILED, STOPPED):  # of an attempt the archived run supersedes
+            (run_dir / marker).unlink(missing_ok=True)
         (run_dir / "observables.csv").write_text((archive / f"{m.name}.csv").read_text())
         record.update(settings=settings, restored_from=str(source))
         (run_dir / DONE).write_text(json.dumps(record) + "\n")

@@ -16,17 +16,17 @@ import yaml
 
 def member_end_time(scene_path, overrides):
     """The member's numerics.end_time: its `set:` value, else the scene's (None if neither)."""
-    if "numerics.end_time" in overrides:
-        return float(overrides["numerics.end_time"])
     try:
+        if "numerics.end_time" in overrides:
+            return float(overrides["numerics.end_time"])
         return float(yaml.safe_load(Path(scene_path).read_text())["numerics"]["end_time"])
     except (OSError, yaml.YAMLError, KeyError, TypeError, ValueError):
         return None
 
 
 def last_time(observables):
-    """(number of whole rows, time of the last whole row) of an observables.csv being
-    written, reading only its head and tail; None if it has no row yet."""
+    """The time of the last whole row of an observables.csv being written, reading only its
+    head and tail; None if it has no row yet."""
     try:
         with open(observables, "rb") as f:
             header = f.readline().decode().strip().split(",")
