@@ -14,8 +14,8 @@ gtpase-convergence.md (the table with the ROC of each quantity, and the cost of 
 split between the sub-problems) and gtpase-convergence.png (the quantities against time).
 The finest finished member is the reference (its errors are empty); unfinished members are
 listed above the table. With --mpi 2 on 2 cores the eps = 0.03 member takes about
-35 min (benchmarks/results/gtpase-convergence.md, "What it shows"), the coarser ones a
-fraction of that, the 0.021 member about 85 min. Without `flow.coupling_stabilisation`
+37 min (benchmarks/results/gtpase-convergence.md, "What it shows"), the coarser ones 9 and
+17 min, the 0.021 member about 85 min. Without `flow.coupling_stabilisation`
 the 0.021 member fails at step 72: the ladder's dt ~ eps exceeds the split's time step
 limit there (about 100 h^3, same report); the study gives every member beta = 0.02, which
 lifts it (docs/scenes.md).
