@@ -76,11 +76,7 @@ void PolarGelSubProblem::set_initial(Function& P) const
   };
   const auto d = gel_.direction;
   const double noise = gel_.noise;
-  double extent = 0;
-  for (int a = 0; a < dom.dim; ++a)
-    extent = std::max(extent, dom.upper[a] - dom.lower[a]);
-  const double grid = 1e-12 * extent;
-  auto snap = [grid](double x) { return std::round(x / grid) * grid; };
+  const random::Snap snap(dom.lower, dom.upper, dom.dim);
   auto delta = [&](std::uint64_t c, double x, double y)
   {
     if (gel_.noise_length == 0) // at every node, from its snapped coordinates

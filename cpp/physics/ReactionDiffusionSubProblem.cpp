@@ -77,15 +77,9 @@ void ReactionDiffusionSubProblem::declare(FieldRegistry& fields)
 
 void ReactionDiffusionSubProblem::set_initial(std::size_t i, Function& c) const
 {
-  // DOLFINx interpolates cell by cell, and a node shared by cells gets the coordinates its
-  // last cell computes, which differ in the last bits between cells (and so between
-  // partitions). Snapped to 1e-12 of the domain, a node on "x > 0"'s line x = 0 or under
-  // the random hash gives the same value on any number of ranks.
-  double extent = 0;
-  for (int a = 0; a < scene_.domain.dim; ++a)
-    extent = std::max(extent, scene_.domain.upper[a] - scene_.domain.lower[a]);
-  const double grid = 1e-12 * extent;
-  auto snap = [grid](double x) { return std::round(x / grid) * grid; };
+  // Snapped (random::Snap), a node on "x > 0"'s line x = 0 or under the random hash gets
+  // the same value on any number of ranks.
+  const random::Snap snap(scene_.domain.lower, scene_.domain.upper, scene_.domain.dim);
   const scene::SpeciesInitial& init = rd_.species[i].initial;
   if (init.random)
   {

@@ -2,6 +2,8 @@
 // hashed (a node's snapped position, a turn's number). They depend on nothing else, so a
 // restart or another partition into ranks gives the same values.
 #pragma once
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -24,4 +26,22 @@ inline double uniform(std::uint64_t seed, std::uint64_t stream, double x, double
     h = mix(h ^ std::uint64_t(std::llround(c * 1e9))); // c is snapped: no last-bit noise
   return double(h >> 11) * 0x1.0p-53;
 }
+
+/// Rounds a coordinate to 1e-12 of the domain's largest extent. DOLFINx interpolates cell by
+/// cell, and a node shared by cells gets the coordinates its last cell computes, which differ
+/// in the last bits between cells (and so between partitions); snapped, the node hashes to
+/// one value on any number of ranks.
+struct Snap
+{
+  /// The domain's box: its corners and dimension.
+  Snap(const std::array<double, 3>& lower, const std::array<double, 3>& upper, int dim)
+  {
+    double extent = 0;
+    for (int a = 0; a < dim; ++a)
+      extent = std::max(extent, upper[a] - lower[a]);
+    grid = 1e-12 * extent;
+  }
+  double operator()(double x) const { return std::round(x / grid) * grid; }
+  double grid;
+};
 } // namespace cellphase::random
