@@ -161,10 +161,7 @@ void FlowSubProblem::prepare_cell_force(std::shared_ptr<const Function> phi_cell
   const auto x = V->tabulate_dof_coordinates(false); // one row of 3 per node
   const auto y = phi_cells->function_space()->tabulate_dof_coordinates(false);
   // The two spaces have the same P2 nodes, numbered independently: match them by position.
-  double extent = 0;
-  for (int a = 0; a < dim; ++a)
-    extent = std::max(extent, scene_.domain.upper[a] - scene_.domain.lower[a]);
-  const PointLookup nodes(y, 1e-10 * extent);
+  const PointLookup nodes(y, 1e-10 * scene_.domain.largest_extent());
   for (std::size_t n = 0; n < x.size() / 3; ++n)
   {
     const auto f = F(x[3 * n], x[3 * n + 1], x[3 * n + 2]);

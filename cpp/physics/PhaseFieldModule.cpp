@@ -31,10 +31,7 @@ std::vector<std::int32_t> wall_facets(const Mesh& mesh, const scene::Scene& s)
     return tagged_facets(mesh, *d.mesh, tag_numbers(*d.mesh, s.phi_tags));
   if (d.mesh)
     return compat::boundary_facets(mesh, [](double, double, double) { return true; });
-  double extent = 0;
-  for (int a = 0; a < d.dim; ++a)
-    extent = std::max(extent, d.upper[a] - d.lower[a]);
-  const double tol = 1e-8 * extent;
+  const double tol = 1e-8 * d.largest_extent();
   return compat::boundary_facets(mesh, [&d, tol](double x, double y, double z)
                                  {
                                    const std::array<double, 3> p{x, y, z};

@@ -76,7 +76,7 @@ void PolarGelSubProblem::set_initial(Function& P) const
   };
   const auto d = gel_.direction;
   const double noise = gel_.noise;
-  const random::Snap snap(dom.lower, dom.upper, dom.dim);
+  const random::Snap snap(dom.largest_extent());
   auto delta = [&](std::uint64_t c, double x, double y)
   {
     if (gel_.noise_length == 0) // at every node, from its snapped coordinates

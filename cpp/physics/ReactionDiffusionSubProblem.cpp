@@ -79,7 +79,7 @@ void ReactionDiffusionSubProblem::set_initial(std::size_t i, Function& c) const
 {
   // Snapped (random::Snap), a node on "x > 0"'s line x = 0 or under the random hash gets
   // the same value on any number of ranks.
-  const random::Snap snap(scene_.domain.lower, scene_.domain.upper, scene_.domain.dim);
+  const random::Snap snap(scene_.domain.largest_extent());
   const scene::SpeciesInitial& init = rd_.species[i].initial;
   if (init.random)
   {

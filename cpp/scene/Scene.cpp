@@ -17,6 +17,14 @@ double Domain::volume() const
   return v;
 }
 
+double Domain::largest_extent() const
+{
+  double extent = 0;
+  for (int a = 0; a < dim; ++a)
+    extent = std::max(extent, upper[a] - lower[a]);
+  return extent;
+}
+
 bool Domain::is_periodic(int axis) const
 {
   return std::find(periodic.begin(), periodic.end(), axis) != periodic.end();

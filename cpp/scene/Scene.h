@@ -29,6 +29,9 @@ struct Domain
   std::shared_ptr<const MeshDomain> mesh;
   bool is_periodic(int axis) const;
   double volume() const;
+  /// The longest side of the box (of the bounding box for a mesh file): the length that
+  /// geometric tolerances scale with.
+  double largest_extent() const;
 };
 
 /// Boundary condition of the phase field: phi = -1 (2.19) or homogeneous Neumann.

@@ -2,8 +2,6 @@
 // hashed (a node's snapped position, a turn's number). They depend on nothing else, so a
 // restart or another partition into ranks gives the same values.
 #pragma once
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -33,14 +31,8 @@ inline double uniform(std::uint64_t seed, std::uint64_t stream, double x, double
 /// one value on any number of ranks.
 struct Snap
 {
-  /// The domain's box: its corners and dimension.
-  Snap(const std::array<double, 3>& lower, const std::array<double, 3>& upper, int dim)
-  {
-    double extent = 0;
-    for (int a = 0; a < dim; ++a)
-      extent = std::max(extent, upper[a] - lower[a]);
-    grid = 1e-12 * extent;
-  }
+  /// extent: the domain's largest extent (scene::Domain::largest_extent).
+  explicit Snap(double extent) : grid(1e-12 * extent) {}
   double operator()(double x) const { return std::round(x / grid) * grid; }
   double grid;
 };
