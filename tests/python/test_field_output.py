@@ -124,9 +124,10 @@ def virtual_display():
     """An X display for one ParaView session: Xvfb, which reports the display number it took
     (-displayfd); its socket is then polled until it accepts a connection. One server per
     session, so a server lost while the machine is loaded fails one probe, not the rest.
-    -noreset: an X server resets when its last client leaves, and the socket poll below is
-    such a client; a ParaView connecting during that reset is refused ("bad X server
-    connection"), which is how one CI run failed."""
+    -noreset: an X server resets when its last client leaves. ParaView opens and closes X
+    connections while it starts (its OpenGL capability check), and a connection that
+    arrives during a reset is refused: the likely cause of one CI run's "bad X server
+    connection"."""
     read_end, write_end = os.pipe()
     server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "800x600x24",
                                "-nolisten", "tcp", "-noreset"], pass_fds=[write_end],
