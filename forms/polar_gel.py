@@ -15,17 +15,23 @@
 # k kappa > 1 (Table 6.1: k kappa ~ 1.8). The term S (P#^{n+1} - P#^n) in (6.16), with
 # S > (k - 1/kappa)/2, makes the factor (S - k)/(S + 1/kappa) a contraction; it is O(dt)
 # consistent, like the stabilised Cahn-Hilliard scheme, and S = 0 is the thesis' scheme.
-from ufl import (Coefficient, FunctionSpace, MixedElement, TestFunction, TestFunctions,
-                 TrialFunction, TrialFunctions, dot, dx, grad, inner, outer, split, sym)
+#
+# P# eliminated: P# enters (6.16) only as (1/kappa + S) int P#^{n+1}.q, and the weak
+# (6.17), tested with the same vector P2 functions and the same quadrature, says that this
+# integral is (1/Pa) times the right-hand side of (6.17) tested with q. Substituting it
+# leaves a system for P alone whose solution is the P^{n+1} of the coupled (P#, P) system
+# exactly (half the unknowns, about an eighth of the factorisation's work). The step's own
+# P#^{n+1} is not needed: after the step P# is projected again from P^{n+1} and phi^{n+1}
+# (L_sharp below; PolarGelSubProblem::finish_step says why).
+from ufl import (Coefficient, FunctionSpace, TestFunction, TrialFunction, dot, dx, grad,
+                 inner, outer, sym)
 
 from cellphase_ufl import P2, P2vec, QDEG, constants, domain, velocity
 
-W = FunctionSpace(domain, MixedElement([P2vec, P2vec]))  # (P#, P)
-(Ps, P), (qs, q) = TrialFunctions(W), TestFunctions(W)
-u0 = Coefficient(W)                                      # (P#^n, P^n)
-Ps0, P0 = split(u0)
 V = FunctionSpace(domain, P2)
 Vvec = FunctionSpace(domain, P2vec)
+P, q = TrialFunction(Vvec), TestFunction(Vvec)
+Pi, Psi = Coefficient(Vvec), Coefficient(Vvec)           # P^n, P#^n (and standalone P, P#)
 phi = Coefficient(V)                                     # phi^n
 v = velocity()                                           # v^{n+1} (zero without flow)
 dt, Pa, c1, beta, xi, kappa, activity, S = constants("dt", "Pa", "c1", "beta", "xi", "kappa",
@@ -36,19 +42,20 @@ G = grad(v)
 Omega = (G.T - G) / 2   # vorticity tensor of (6.9)
 Dv = sym(G)             # deformation tensor of (6.9)
 
-# (6.16) tested with q#, (6.17) with q
-a = (inner(P, qs) / dt + inner(dot(grad(P), v), qs) + inner(dot(Omega, P), qs)
-     - xi * inner(dot(Dv, P), qs) + inner(Ps, qs) / kappa + S * inner(Ps, qs)
-     + inner(Ps, q)
-     - (inner(grad(P), grad(q))
-        + c1 * (inner(P0, P0) * inner(P, q) + 2 * inner(P0, P) * inner(P0, q))
-        - c1 * phi * inner(P, q)) / Pa) * dxq
-L = (inner(P0, qs) / dt + S * inner(Ps0, qs)
-     + (-2 * c1 * inner(P0, P0) * inner(P0, q) + beta * inner(grad(phi), q)) / Pa) * dxq
+# (6.17) tested with q: int P#.q = sharp_lhs(P, q) + sharp_rhs(q), linearised at P^n
+sharp_lhs = (inner(grad(P), grad(q))
+             + c1 * (inner(Pi, Pi) * inner(P, q) + 2 * inner(Pi, P) * inner(Pi, q))
+             - c1 * phi * inner(P, q)) / Pa
+sharp_rhs = (-2 * c1 * inner(Pi, Pi) * inner(Pi, q) + beta * inner(grad(phi), q)) / Pa
+relax = 1 / kappa + S   # the weight of P#^{n+1} in (6.16) with the stabilisation
+# (6.16) tested with q, its P#^{n+1} replaced by (6.17)
+a = (inner(P, q) / dt + inner(dot(grad(P), v), q) + inner(dot(Omega, P), q)
+     - xi * inner(dot(Dv, P), q) + relax * sharp_lhs) * dxq
+L = (inner(Pi, q) / dt + S * inner(Psi, q) - relax * sharp_rhs) * dxq
 
-# P#^0 of the initial P (L2 projection of (6.17), with the vector P2 mass matrix of
-# forms/interface_force.py): the flow's first step needs it.
-Pi, Psi = Coefficient(Vvec), Coefficient(Vvec)           # standalone P, P#
+# P# of a given P (L2 projection of (6.17), with the vector P2 mass matrix of
+# forms/interface_force.py): P#^0 for the flow's first step, and after every step P#^{n+1}
+# of P^{n+1} and phi^{n+1}.
 r = TestFunction(Vvec)
 L_sharp = ((inner(grad(Pi), grad(r)) + c1 * inner(Pi, Pi) * inner(Pi, r)
             - c1 * phi * inner(Pi, r) + beta * inner(grad(phi), r)) / Pa) * dxq

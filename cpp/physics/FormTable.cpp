@@ -168,9 +168,8 @@ ReactionForms reaction_forms(const std::string& model, int dim)
 PolarGelForms polar_gel_forms(int dim)
 {
   auto get = [&](const std::string& name) { return required("polar_gel", dim, name); };
-  return {get("a"),           get("L"),      space("polar_gel", dim, "a"),
-          get("L_sharp"),     get("force_L"), get("energy"),
-          get("dissipation"), {get("P_cell_0"), get("P_cell_1")}};
+  return {get("a"),       get("L"),      get("L_sharp"),     get("force_L"),
+          get("energy"),  get("dissipation"), {get("P_cell_0"), get("P_cell_1")}};
 }
 
 InterfaceForceForms interface_force_forms(int dim)

@@ -142,9 +142,8 @@ ReactionForms reaction_forms(const std::string& model, int dim);
 /// forms/polar_gel.py: the orientation field of an active polar gel (6.16)-(6.17).
 struct PolarGelForms
 {
-  ufcx_form* a = nullptr;       ///< the coupled step of (P#, P)
+  ufcx_form* a = nullptr;       ///< the step of P, with P#^{n+1} eliminated (vector P2)
   ufcx_form* L = nullptr;
-  ufcx_space_fn space = nullptr; ///< "u0" (P#, P), "phi", "v", "Pi" (vector P2)
   ufcx_form* L_sharp = nullptr; ///< P# of a given P (with the vector P2 mass matrix)
   ufcx_form* force_L = nullptr; ///< the P terms of the momentum equation (6.13)
   ufcx_form* energy = nullptr;  ///< (6.4)

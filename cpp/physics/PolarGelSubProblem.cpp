@@ -130,7 +130,6 @@ void PolarGelSubProblem::attach(FieldRegistry& fields)
   phi_ = fields.get(phi_name_);
   auto mesh = phi_->function_space()->mesh();
   auto V = fields.space("", FieldSpace::vector_p2);
-  W_ = compat::create_space(forms_.space, "u0", mesh);
   bool fresh_P = false, fresh_sharp = false;
   P_ = fields.take("polar.P", V, fresh_P); // moved from the last mesh or restored
   P_sharp_ = fields.take("polar.P_sharp", V, fresh_sharp);
@@ -141,9 +140,6 @@ void PolarGelSubProblem::attach(FieldRegistry& fields)
   if (estimate_)
     estimate_->attach(fields);
 
-  sharp_to_mixed_ = compat::dofs_in_sub_space(*V, *W_->sub({0}));
-  P_to_mixed_ = compat::dofs_in_sub_space(*V, *W_->sub({1}));
-  u0_ = std::make_shared<Function>(W_);
   const CoefficientMap coeffs{{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}};
   energy_ = compat::create_form(*forms_.energy, {}, coeffs, constants_, mesh);
   dissipation_ = compat::create_form(*forms_.dissipation, {}, coeffs, constants_, mesh);
@@ -171,10 +167,13 @@ void PolarGelSubProblem::project_sharp()
 void PolarGelSubProblem::connect(FieldRegistry& fields)
 {
   v_ = flow_velocity_or_zero(fields);
-  const CoefficientMap coeffs{{"u0", u0_}, {"phi", phi_}, {"v", v_}};
+  // P^n and P#^n are the registry's fields themselves: the step assembles from them before
+  // it overwrites P.
+  auto V = std::const_pointer_cast<Space>(P_->function_space());
+  const CoefficientMap coeffs{{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}, {"v", v_}};
   system_ = std::make_unique<PeriodicSystem>(
-      compat::create_form(*forms_.a, {W_, W_}, coeffs, constants_),
-      compat::create_form(*forms_.L, {W_}, coeffs, constants_), scene_, comm_, "polar_",
+      compat::create_form(*forms_.a, {V, V}, coeffs, constants_),
+      compat::create_form(*forms_.L, {V}, coeffs, constants_), scene_, comm_, "polar_",
       scene_.numerics.petsc, scene_.numerics.solver);
 
   if (scene_.flow)
@@ -205,16 +204,6 @@ StepTimings PolarGelSubProblem::step(double dt)
   dt_->value[0] = dt;
   if (estimate_)
     estimate_->begin_step();
-  {
-    auto u = u0_->x()->mutable_array();
-    auto ps = P_sharp_->x()->array();
-    auto p = P_->x()->array();
-    for (std::size_t d = 0; d < P_to_mixed_.size(); ++d)
-    {
-      u[sharp_to_mixed_[d]] = ps[d];
-      u[P_to_mixed_[d]] = p[d];
-    }
-  }
   // The matrix holds v^{n+1}, phi^n and the linearisation at P^n: new every step.
   const double before = seconds_since(t0);
   StepTimings t = system_->solve("the orientation field (6.16)-(6.17) of forms/polar_gel.py");
@@ -223,14 +212,12 @@ StepTimings PolarGelSubProblem::step(double dt)
   factorisations_ += factorised;
   last_iterations_ = iterations;
   {
+    // P^{n+1}; P# follows in finish_step, from P^{n+1} and phi^{n+1}.
     auto x = system_->solution();
-    auto ps = P_sharp_->x()->mutable_array();
     auto p = P_->x()->mutable_array();
-    for (std::size_t d = 0; d < P_to_mixed_.size(); ++d)
-    {
-      ps[d] = x[sharp_to_mixed_[d]];
-      p[d] = x[P_to_mixed_[d]];
-    }
+    if (x.size() != p.size())
+      throw std::logic_error("polar_gel: the solution is not on P's space");
+    std::copy(x.begin(), x.end(), p.begin());
   }
   if (estimate_)
     time_error_ = estimate_->end_step(dt, comm_);
@@ -241,11 +228,12 @@ StepTimings PolarGelSubProblem::step(double dt)
 StepTimings PolarGelSubProblem::finish_step()
 {
   // The flow's next step takes phi#^{n+1} (with P^{n+1} and phi^{n+1}) and the P terms of
-  // (6.13). The P# of the step above holds phi^n; the large terms c1 phi P of P# and
-  // -(c1/2) |P|^2 of phi# cancel in the force only when both hold the same phi, and a
-  // force from phi^n against phi^{n+1} pushes back on the cell's own velocity, a delayed
-  // feedback that oscillates and grows with dt. So P# and the force are made again from
-  // P^{n+1} and phi^{n+1} (differing from the step's P# by O(dt)).
+  // (6.13). The P# of the coupled (P#, P) step would hold phi^n; the large terms c1 phi P
+  // of P# and -(c1/2) |P|^2 of phi# cancel in the force only when both hold the same phi,
+  // and a force from phi^n against phi^{n+1} pushes back on the cell's own velocity, a
+  // delayed feedback that oscillates and grows with dt. So P# and the force are made from
+  // P^{n+1} and phi^{n+1} (differing from the step's P# by O(dt)); the step itself needs
+  // no P#^{n+1} (forms/polar_gel.py eliminates it).
   StepTimings t;
   auto t0 = Clock::now();
   project_sharp();
@@ -288,6 +276,6 @@ void PolarGelSubProblem::observe(Observation& row)
 
 std::int64_t PolarGelSubProblem::num_dofs() const
 {
-  return W_ ? compat::num_global_dofs(*W_) : 0;
+  return P_ ? compat::num_global_dofs(*P_->function_space()) : 0;
 }
 } // namespace cellphase

@@ -1,6 +1,7 @@
 // The orientation field of an active polar gel (thesis chapter 6) as a sub-problem: P and
 // its chemical potential P# (vector P2, forms/polar_gel.py) in one implicit step after the
-// flow (section 6.3, step 2), with phi^n and v^{n+1}. With a flow it writes the force of
+// flow (section 6.3, step 2), with phi^n and v^{n+1}; P# is eliminated from the step's
+// system exactly and projected from P^{n+1} after it. With a flow it writes the force of
 // P on the fluid, the P terms of (6.13) with the active stress (1/Fa) div(phi~ P (x) P)
 // (6.11), that the flow adds at the next step (polar.force); the phase field adds the
 // orientation terms of phi# (6.15) from polar.P.
@@ -56,9 +57,6 @@ private:
 
   std::shared_ptr<const Function> phi_;   ///< phi^n (the phase field's, in place)
   std::shared_ptr<Function> P_, P_sharp_; ///< standalone, in the registry
-  std::shared_ptr<Space> W_;              ///< (P#, P)
-  std::vector<std::int32_t> sharp_to_mixed_, P_to_mixed_; ///< V dof (unrolled) -> W dof
-  std::shared_ptr<Function> u0_;          ///< (P#^n, P^n)
   std::shared_ptr<const Function> v_;     ///< the flow's v^{n+1}, or zero
   std::shared_ptr<Form> energy_, dissipation_;
   std::array<std::shared_ptr<Form>, 2> P_cell_;

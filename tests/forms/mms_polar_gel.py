@@ -3,9 +3,12 @@
 # natural condition grad P . n = 0; phi and v are given smooth fields (v divergence-free).
 # P# is (6.17) of the exact P, written from the thesis with UFL's derivatives, and a source
 # in (6.16) makes the exact state steady; one step from it must then reproduce it up to the
-# discretisation error. Independent of the production form: only its a and L are used.
+# discretisation error. Independent of the production form: only its a, L (the step of P
+# with P# eliminated) and L_sharp (P# of a P) are used; P#^{n+1} is the projection of
+# (6.17) of the computed P, as the program makes it after the step.
 import os
-from ufl import SpatialCoordinate, as_matrix, as_vector, cos, div, dot, dx, grad, inner, pi, sin
+from ufl import (SpatialCoordinate, TrialFunction, as_vector, cos, div, dot, dx, grad, inner,
+                 pi, replace, sin)
 
 import cellphase_ufl
 exec(open(os.path.join(os.path.dirname(cellphase_ufl.__file__), "polar_gel.py")).read())
@@ -24,9 +27,10 @@ Om = (Gv.T - Gv) / 2
 Dm = (Gv + Gv.T) / 2
 f_P = dot(grad(P_ex), v_ex) + dot(Om, P_ex) - xi * dot(Dm, P_ex) + Ps_ex / kappa
 dx8 = dx(metadata={"quadrature_degree": 8})
-L_mms = L + inner(f_P, qs) * dx8
-uh = Coefficient(W)
-Psh, Ph = split(uh)
-error_P = inner(Ph - P_ex, Ph - P_ex) * dx8
+L_mms = L + inner(f_P, q) * dx8
+uh, Psh = Coefficient(Vvec), Coefficient(Vvec)           # P^{n+1} and its P#
+mass = inner(TrialFunction(Vvec), q) * dx8
+L_sharp_h = replace(L_sharp, {Pi: uh})
+error_P = inner(uh - P_ex, uh - P_ex) * dx8
 error_Ps = inner(Psh - Ps_ex, Psh - Ps_ex) * dx8
-forms = [a, L_mms, error_P, error_Ps]
+forms = [a, L_mms, mass, L_sharp_h, error_P, error_Ps]
