@@ -152,6 +152,34 @@ int launcher_rank()
   return 0;
 }
 
+/// sim.run(), stopping every rank at once on an unexpected error. The errors the program
+/// raises on purpose (numerical failure, interruption, bad scene or restart, solver
+/// failure) are raised on every rank and pass through. Any other may be one rank's alone:
+/// the others then wait in a collective call, and so would the simulation's destructors
+/// (MUMPS and PETSc objects free collectively), so the run would hang without a word.
+void run_or_abort(cellphase::Simulation& sim, int rank)
+{
+  try
+  {
+    sim.run();
+  }
+  catch (const cellphase::NumericalFailure&) { throw; }
+  catch (const cellphase::Interrupted&) { throw; }
+  catch (const cellphase::scene::SceneError&) { throw; }
+  catch (const cellphase::RestartError&) { throw; }
+  catch (const cellphase::SolverError&) { throw; }
+  catch (const std::exception& e)
+  {
+    int ranks;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    if (ranks == 1)
+      throw;
+    std::fprintf(stderr, "error on rank %d: %s\n", rank, e.what());
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, 4);
+  }
+}
+
 int run(const cellphase::scene::Scene& scene, bool restart)
 {
   int rank;
@@ -160,7 +188,7 @@ int run(const cellphase::scene::Scene& scene, bool restart)
   try
   {
     cellphase::Simulation sim(scene, MPI_COMM_WORLD, restart);
-    sim.run();
+    run_or_abort(sim, rank);
   }
   catch (const cellphase::NumericalFailure& e)
   {

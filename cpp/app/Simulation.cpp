@@ -758,6 +758,7 @@ void Simulation::run()
     const bool last = step_control_ ? last_dt_ >= time_left : n == steps;
     at = {n, last ? nu.end_time : at.time + last_dt_};
     test_hooks::inject_nan_after_step(fields_, n);
+    test_hooks::throw_on_one_rank_after_step(n, rank_of(comm_));
     record(at, timings, remesh_time, volume_change, last);
     progress.update(n, at.time);
     std::string checkpoint;

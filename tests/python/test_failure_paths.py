@@ -82,6 +82,24 @@ def test_serial_run_continued_on_two_ranks(tmp_path, uninterrupted):
     assert_same_observables(a, b, rel=1e-8)
 
 
+def test_internal_error_on_one_rank_stops_every_rank(tmp_path):
+    """An unexpected error on one rank alone (a bug, not a failure the program checks for
+    on every rank) leaves the other rank in a collective call: the run must stop with the
+    error's message instead of hanging in the destructors' collective frees."""
+    prefix = mpirun_prefix(2)  # skips without mpirun
+    run_dir = tmp_path / "run"
+    scene_path = write_scene(vesicle_scene(), tmp_path, run_dir)
+    t0 = time.time()
+    proc = subprocess.run(prefix + [EXE, "run", str(scene_path)], capture_output=True,
+                          text=True, timeout=300,
+                          env={**os.environ, "CELLPHASE_TEST_THROW_AT_STEP": "3",
+                               "CELLPHASE_TEST_THROW_RANK": "1"})
+    print(f"stopped in {time.time() - t0:.1f} s with status {proc.returncode}")
+    assert proc.returncode != 0, proc.stdout + proc.stderr
+    assert "error on rank 1: test: an internal error on this rank alone after step 3" \
+        in proc.stderr, proc.stderr
+
+
 def test_restart_with_another_mesh_is_refused_before_step_one(tmp_path):
     run_dir = tmp_path / "run"
     scene_path = write_scene(vesicle_scene(end_time=4e-3), tmp_path, run_dir)
