@@ -45,6 +45,21 @@ def run_scene(scene, workdir, ranks=1, timeout=900, env=None, log=None):
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
+def one_rank_against_two(scene, workdir):
+    """Run `scene` on one rank and on two; the largest difference of each observable (not
+    the wall times) relative to max(1, |value|), and the two runs' columns."""
+    (workdir / "one").mkdir()
+    (workdir / "two").mkdir()
+    one = run_scene(scene, workdir / "one")
+    two = run_scene(scene, workdir / "two", ranks=2)
+    worst = {}
+    for key in one:
+        if key.startswith("wall_") or key == "remesh_volume_change":
+            continue
+        worst[key] = max(abs(a - b) / max(1.0, abs(a)) for a, b in zip(one[key], two[key]))
+    return worst, one, two
+
+
 def assert_same_as_lu(runs, keys, tol=1e-9):
     """runs["default"] (the symmetric L D L^T factorisation) against runs["lu"]: the largest
     difference of each observable relative to max(1, |value|) (quantities that are 0 up to

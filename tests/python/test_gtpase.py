@@ -14,7 +14,7 @@ import matplotlib.image
 import pytest
 import yaml
 
-from conftest import EXE, require_exe, run_scene
+from conftest import EXE, one_rank_against_two, require_exe, run_scene
 from test_checkpoint import assert_same_observables, restart_from_shorter_run
 
 # Table 5.1 (Be = 6.6, Ca = 0.264 for b_N = 1e-17 J, sigma = 5e-6 N/m; gamma/Be = 0.01) and
@@ -267,15 +267,7 @@ def test_two_ranks_agree_with_one_with_random_initial_data(tmp_path):
     scene = cell_scene(dt=1e-3, end_time=0.012, frozen=False, flow=True)
     scene["numerics"]["mesh"]["remesh_every"] = 4
     scene["reaction_diffusion"]["species"]["c1"] = {"initial": {"random": [0.1658, 0.1858]}}
-    (tmp_path / "one").mkdir()
-    (tmp_path / "two").mkdir()
-    one = run_scene(scene, tmp_path / "one")
-    two = run_scene(scene, tmp_path / "two", ranks=2)
-    worst = {}
-    for key in one:
-        if key.startswith("wall_") or key == "remesh_volume_change":
-            continue
-        worst[key] = max(abs(a - b) / max(1.0, abs(a)) for a, b in zip(one[key], two[key]))
+    worst, _, _ = one_rank_against_two(scene, tmp_path)
     key = max(worst, key=worst.get)
     print(f"largest difference 1 rank against 2: {worst[key]:.1e} ({key}); "
           f"rd_mass {worst['rd_mass']:.1e}")
