@@ -20,7 +20,7 @@
 # (6.17), tested with the same vector P2 functions and the same quadrature, says that this
 # integral is (1/Pa) times the right-hand side of (6.17) tested with q. Substituting it
 # leaves a system for P alone whose solution is the P^{n+1} of the coupled (P#, P) system
-# exactly (half the unknowns, about an eighth of the factorisation's work). The step's own
+# exactly, with half the unknowns (docs/scenes.md gives the time saved). The step's own
 # P#^{n+1} is not needed: after the step P# is projected again from P^{n+1} and phi^{n+1}
 # (L_sharp below; PolarGelSubProblem::finish_step says why).
 from ufl import (Coefficient, FunctionSpace, TestFunction, TrialFunction, dot, dx, grad,

@@ -7,6 +7,8 @@
 #include "compat/Dolfinx.h"
 #include "mms_polar_gel.h"
 #include "mpi_main.h"
+#include "solve/Assemble.h"
+#include "solve/L2Projection.h"
 #include "solve/LinearSolver.h"
 #include <cmath>
 #include <numbers>
@@ -39,22 +41,17 @@ struct Errors
   double P, Ps;
 };
 
-/// u <- the solution of a u = L (fixed mesh, no boundary conditions: natural ones).
-void solve_linear(const Form& a, const Form& L, Function& u, const char* what)
+/// u <- the solution of a u = L (fixed mesh, natural boundary conditions only).
+void solve_linear(std::shared_ptr<const Form> a, const Form& L, Function& u)
 {
-  dolfinx::la::petsc::Matrix A(dolfinx::fem::petsc::create_matrix(a), false);
-  MatZeroEntries(A.mat());
-  dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(A.mat(), ADD_VALUES), a, {});
-  MatAssemblyBegin(A.mat(), MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(A.mat(), MAT_FINAL_ASSEMBLY);
+  auto A = create_matrix(*a);
+  assemble_matrix(A->mat(), *a, {});
   dolfinx::la::Vector<T> b(u.function_space()->dofmap()->index_map,
                            u.function_space()->dofmap()->index_map_bs());
-  b.set(0);
-  dolfinx::fem::assemble_vector(b.mutable_array(), L);
-  b.scatter_rev(std::plus<T>());
+  assemble_rhs(b, L, a, {});
   LinearSolver solver(MPI_COMM_WORLD, "mms_", {});
-  solver.set_operator(A.mat());
-  solver.solve(b, *u.x(), what);
+  solver.set_operator(A->mat());
+  solver.solve(b, *u.x(), "mms P");
 }
 
 Errors solve_mms(int n, double S)
@@ -81,10 +78,11 @@ Errors solve_mms(int n, double S)
     c[k] = std::make_shared<Constant>(val);
   auto uh = std::make_shared<Function>(V), Psh = std::make_shared<Function>(V);
   const CoefficientMap coeffs{{"Pi", P0}, {"Psi", Ps0}, {"phi", phi}, {"v", v}, {"uh", uh}, {"Psh", Psh}};
-  solve_linear(*compat::create_form(*form_mms_polar_gel_a, {V, V}, coeffs, c),
-               *compat::create_form(*form_mms_polar_gel_L_mms, {V}, coeffs, c), *uh, "mms P");
-  solve_linear(*compat::create_form(*form_mms_polar_gel_mass, {V, V}, coeffs, c),
-               *compat::create_form(*form_mms_polar_gel_L_sharp_h, {V}, coeffs, c), *Psh, "mms P#");
+  solve_linear(compat::create_form(*form_mms_polar_gel_a, {V, V}, coeffs, c),
+               *compat::create_form(*form_mms_polar_gel_L_mms, {V}, coeffs, c), *uh);
+  // P# of the new P as the program makes it (PolarGelSubProblem::project_sharp).
+  L2Projection(*compat::create_form(*form_mms_polar_gel_mass, {V, V}, coeffs, c), MPI_COMM_WORLD, "mms_sharp_")
+      .project(*compat::create_form(*form_mms_polar_gel_L_sharp_h, {V}, coeffs, c), *Psh, "mms P#");
   auto eP = compat::create_form(*form_mms_polar_gel_error_P, {}, coeffs, c, mesh);
   auto eS = compat::create_form(*form_mms_polar_gel_error_Ps, {}, coeffs, c, mesh);
   return {std::sqrt(compat::assemble_scalar(*eP)), std::sqrt(compat::assemble_scalar(*eS))};
