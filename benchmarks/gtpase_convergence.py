@@ -26,7 +26,6 @@ the members of an earlier session are not rerun on a new machine.
 """
 import argparse
 import csv
-import subprocess
 import sys
 from pathlib import Path
 
@@ -34,48 +33,14 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
-import study as study_runner  # noqa: E402  (python/study.py)
-from study_file import load_study  # noqa: E402
-from study_report import convergence_errors  # noqa: E402
 from results_csv import hand_written_notes  # noqa: E402
-from study_archive import archive_members, restore_members  # noqa: E402
+from convergence_table import (add_arguments, error_rows, member_results,  # noqa: E402
+                               plot_members, run_ladder, table_lines)
 
 ARCHIVE = ROOT / "benchmarks" / "results" / "gtpase-convergence-members"
 QUANTITIES = [("center_x", "err_xcm", "x_cm"), ("cell_velocity_x", "err_vcm", "v_cm"),
               ("circularity", "err_circ", "circularity"), ("helfrich_energy", "err_energy",
                                                           "Helfrich energy")]
-
-
-def member_results(study):
-    """The finished members, coarsest first, and a line for each unfinished one (the study
-    tool's own reading of its run directories and markers)."""
-    results, missing = [], []
-    for r in study_runner.collect(study):
-        if r["status"] == "ok":
-            results.append(r)
-            continue
-        at = f"at t = {float(r['obs']['time'][-1]):g}, step {int(r['obs']['step'][-1])}; " \
-            if r["obs"] is not None else ""
-        missing.append((r["eps"], f"eps = {r['eps']:g}: not finished ({at}{r['status']})"))
-    if len(results) < 2:
-        sys.exit(f"{study.output}: fewer than two members finished (run without --report-only)")
-    return sorted(results, key=lambda r: -r["eps"]), missing
-
-
-def plot_members(results, path):
-    """x_cm, v_cm, circularity and Helfrich energy against time, one line per member."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, 2, figsize=(9, 6), constrained_layout=True)
-    for ax, (q, _, name) in zip(axes.flat, QUANTITIES):
-        for r in results:
-            ax.plot(r["obs"]["time"], r["obs"][q], label=f"eps = {r['eps']:g}")
-        ax.set_xlabel("t")
-        ax.set_title(name)
-    axes[0][0].legend()
-    fig.suptitle("Motile GTPase cell: the members of Table 5.2")
-    fig.savefig(path, dpi=110)
 
 
 def cost_split(results):
@@ -104,35 +69,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("study", nargs="?", type=Path,
                         default=ROOT / "benchmarks" / "studies" / "gtpase-convergence.yaml")
-    parser.add_argument("--jobs", type=int, default=1, help="members run at once")
-    parser.add_argument("--mpi", type=int, default=1, help="MPI ranks per member")
-    parser.add_argument("--report-only", action="store_true")
-    parser.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results")
+    add_arguments(parser)
     parser.add_argument("--archive", type=Path, default=ARCHIVE,
                         help="finished members' time series, kept in the repository "
                              f"(default {ARCHIVE.relative_to(ROOT)})")
     args = parser.parse_args()
-    study = load_study(args.study)
-    restored, skipped = restore_members(study, args.archive)
-    for name in restored:
-        print(f"{name}: restored from {args.archive}")
-    for name, why in skipped:
-        print(f"{name}: not restored from {args.archive}: {why}")
-    if not args.report_only:
-        subprocess.run([sys.executable, str(ROOT / "python" / "study.py"), "run", str(args.study),
-                        "--jobs", str(args.jobs), "--mpi", str(args.mpi)], check=False)
-        # (exit 1: a member failed or was stopped; the table is made of the finished ones)
-    archive_members(study, args.archive)
+    study = run_ladder(args.study, args.archive, args)
     results, missing = member_results(study)
-    errors = convergence_errors(results, [q for q, _, _ in QUANTITIES])
+    rows, errors = error_rows(results, QUANTITIES)
     args.results.mkdir(parents=True, exist_ok=True)
-    rows = []
-    for i, r in enumerate(results):
-        row = {"epsilon": r["eps"], "dofs": int(r["obs"]["dofs"][-1]),
-               "steps": len(r["obs"]["time"]) - 1, "wall_time_s": r["wall"]}
-        for q, column, _ in QUANTITIES:
-            row[column] = errors[q][i][0] if i < len(results) - 1 else ""
-        rows.append(row)
     with open(args.results / "gtpase-convergence.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -140,24 +85,11 @@ def main():
     lines = ["# Table 5.2: convergence of the motile GTPase cell in epsilon", "",
              f"Study: `{args.study.relative_to(ROOT) if args.study.is_relative_to(ROOT) else args.study}`; "
              "relative error norm of section 5.3 against the finest finished member, ROC "
-             "between neighbouring members.", ""] + [f"- {line}" for _, line in missing] + \
-            (["- The reference is therefore not yet the finest member of the ladder."]
-             if any(eps < results[-1]["eps"] for eps, _ in missing) else []) + \
-            ([""] if missing else []) + [
-             "| eps | dofs | steps | wall s | " + " | ".join(f"{n} err | ROC" for _, _, n in QUANTITIES) + " |",
-             "|---" * (4 + 2 * len(QUANTITIES)) + "|"]
-    for i, (r, row) in enumerate(zip(results, rows)):
-        cells = [f"{r['eps']:g}", str(row["dofs"]), str(row["steps"]),
-                 f"{row['wall_time_s']:.0f}" if row["wall_time_s"] else "-"]
-        for q, _, _ in QUANTITIES:
-            if i < len(results) - 1:
-                e, roc = errors[q][i]
-                cells += [f"{e:.4f}", "-" if roc != roc else f"{roc:.2f}"]
-            else:
-                cells += ["(reference)", ""]
-        lines.append("| " + " | ".join(cells) + " |")
+             "between neighbouring members.", ""]
+    lines += table_lines(results, rows, errors, QUANTITIES, missing)
     lines += cost_split(results)
-    plot_members(results, args.results / "gtpase-convergence.png")
+    plot_members(results, QUANTITIES, args.results / "gtpase-convergence.png",
+                 "Motile GTPase cell: the members of Table 5.2")
     lines += ["", "![the members against time](gtpase-convergence.png)"]
     report = args.results / "gtpase-convergence.md"
     notes = hand_written_notes(report)

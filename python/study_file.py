@@ -17,7 +17,8 @@ import yaml
 
 TOP_KEYS = {"scene", "output", "set", "ladder", "sweep", "observables", "report"}
 LADDER_KEYS = {"epsilon", "rules"}
-RULE_KEYS = {"resolution_times_epsilon", "dt_over_epsilon"}
+RESOLUTION_RULES = {"resolution_times_epsilon", "base_cell_over_epsilon"}  # exactly one
+RULE_KEYS = RESOLUTION_RULES | {"dt_over_epsilon"}
 REPORT_KEYS = {"end_state"}
 DEFAULT_OBSERVABLES = ["helfrich_energy", "circularity", "volume", "surface"]
 
@@ -75,16 +76,32 @@ def _check_keys(where, section, allowed):
         raise StudyError(f"unknown key {prefix}{unknown[0]}; allowed: {', '.join(sorted(allowed))}")
 
 
-def _scene_dimension(scene_path):
-    """Number of axes of the base scene's domain (for the ladder's resolution)."""
+def _scene_domain(scene_path, common):
+    """The base scene's domain.lower, domain.upper and domain.resolution, after the study's
+    `set` (for the ladder's resolution)."""
     try:
-        scene = yaml.safe_load(scene_path.read_text())
-        return len(scene["domain"]["resolution"])
-    except (OSError, yaml.YAMLError, KeyError, TypeError) as e:
-        raise StudyError(f"scene {scene_path}: cannot read domain.resolution ({e})") from None
+        domain = dict(yaml.safe_load(scene_path.read_text())["domain"])
+        for key in ("lower", "upper", "resolution"):
+            domain[key] = common.get(f"domain.{key}", domain.get(key))
+        return ([float(x) for x in domain["lower"]], [float(x) for x in domain["upper"]],
+                list(domain["resolution"]))
+    except (OSError, yaml.YAMLError, KeyError, TypeError, ValueError) as e:
+        raise StudyError(f"scene {scene_path}: cannot read domain.lower, upper and resolution "
+                         f"({e})") from None
 
 
-def _ladder_members(ladder, scene_path, where):
+def _ladder_resolution(rules, eps, domain):
+    """Base resolution of the member with epsilon eps: n = round(c / eps) on every axis
+    (resolution_times_epsilon, square domains), or the base cell size h = c eps on every axis
+    (base_cell_over_epsilon: n_i = round(extent_i / h), for domains of any aspect)."""
+    lower, upper, resolution = domain
+    if "resolution_times_epsilon" in rules:
+        return [max(1, round(rules["resolution_times_epsilon"] / eps))] * len(resolution)
+    h = rules["base_cell_over_epsilon"] * eps
+    return [max(1, round((hi - lo) / h)) for lo, hi in zip(lower, upper)]
+
+
+def _ladder_members(ladder, scene_path, common, where):
     _check_keys(f"{where}ladder", ladder, LADDER_KEYS)
     for key in sorted(LADDER_KEYS - set(ladder)):
         raise StudyError(f"{where}ladder.{key}: required")
@@ -95,17 +112,19 @@ def _ladder_members(ladder, scene_path, where):
         raise StudyError(f"{where}ladder.epsilon: values must decrease (finest last, the reference)")
     rules = ladder["rules"]
     _check_keys(f"{where}ladder.rules", rules, RULE_KEYS)
-    for key in sorted(RULE_KEYS):
-        if key not in rules:
-            raise StudyError(f"{where}ladder.rules.{key}: required")
+    if "dt_over_epsilon" not in rules:
+        raise StudyError(f"{where}ladder.rules.dt_over_epsilon: required")
+    if len(RESOLUTION_RULES & set(rules)) != 1:
+        raise StudyError(f"{where}ladder.rules: exactly one of "
+                         f"{' or '.join(sorted(RESOLUTION_RULES))} is required")
+    for key in rules:
         _positive_numbers(f"{where}ladder.rules.{key}", [rules[key]])
-    dim = _scene_dimension(scene_path)
+    domain = _scene_domain(scene_path, common)
     members = []
     for eps in eps_list:
         # Same points across the interface and the same dt/h on every member (thesis 5.3).
-        n = max(1, round(rules["resolution_times_epsilon"] / eps))
         overrides = {"numerics.epsilon": eps, "numerics.dt": rules["dt_over_epsilon"] * eps,
-                     "domain.resolution": [n] * dim}
+                     "domain.resolution": _ladder_resolution(rules, eps, domain)}
         members.append(Member(f"eps{eps:g}", overrides, eps=eps))
     return members
 
@@ -185,7 +204,7 @@ def load_study(path):
 
     if "ladder" in data:
         kind, keys = "ladder", []
-        members = _ladder_members(data["ladder"], scene, where)
+        members = _ladder_members(data["ladder"], scene, common, where)
     else:
         kind = "sweep"
         members, keys = _sweep_members(data["sweep"], where)

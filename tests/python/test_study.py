@@ -99,6 +99,8 @@ def write_study(tmp_path, text):
      "{resolution_times_epsilon: 1, dt_over_epsilon: 0.1}}\n", "must decrease"),
     ("scene: SCENE\noutput: o\nladder: {epsilon: [0.1, 0.05], rules: "
      "{resolution_times_epsilon: 1}}\n", "ladder.rules.dt_over_epsilon: required"),
+    ("scene: SCENE\noutput: o\nladder: {epsilon: [0.1, 0.05], rules: {resolution_times_epsilon: "
+     "1, base_cell_over_epsilon: 2, dt_over_epsilon: 0.1}}\n", "exactly one of base_cell_over"),
     ("scene: SCENE\noutput: o\nladder: {epsilon: [0.1, x], rules: {}}\n", "'x' is not a positive"),
     ("scene: SCENE\noutput: o\nsweep: {a: 3}\n", "sweep.a: expected a non-empty list"),
     ("scene: SCENE\noutput: o\n", "exactly one of ladder"),
@@ -123,6 +125,19 @@ def test_ladder_rules_scale_resolution_and_dt(tmp_path):
     assert fine.overrides["numerics.dt"] == pytest.approx(0.0016)
     assert coarse.overrides["numerics.end_time"] == 0.1
     assert study.output == tmp_path / "o"
+
+
+def test_ladder_base_cell_rule_keeps_cells_square_on_a_long_domain(tmp_path):
+    """base_cell_over_epsilon: the base cell size h = c eps on every axis of a 4 x 1 channel
+    (the polar-gel cell's, thesis section 6.2.5), after the study's own domain.upper."""
+    study = load_study(write_study(tmp_path, (
+        "scene: SCENE\noutput: o\nset: {domain.lower: [0, 0], domain.upper: [160, 40]}\n"
+        "ladder: {epsilon: [0.3, 0.15], rules: "
+        "{base_cell_over_epsilon: 10, dt_over_epsilon: 0.5}}\n")))
+    coarse, fine = study.members
+    assert coarse.overrides["domain.resolution"] == [53, 13]  # h = 3: 160/3, 40/3 rounded
+    assert fine.overrides["domain.resolution"] == [107, 27]   # h = 1.5
+    assert fine.overrides["numerics.dt"] == pytest.approx(0.075)
 
 
 def test_keys_joined_by_a_comma_vary_together(tmp_path):

@@ -1,0 +1,134 @@
+#!/usr/bin/python3
+"""Table 6.2 of the thesis with the study tool: the motile active polar gel cell on
+I = [0, 500] for eps = 0.42, 0.30, 0.21, 0.15 with beta = 0 and beta = 0.05
+(benchmarks/studies/polar-convergence*.yaml), and the error norms and ROC of x_cm, v_cell and
+circularity against the finest finished member of each half.
+
+Usage: /usr/bin/python3 benchmarks/polar_convergence.py [STUDY.yaml ...] [--jobs N] [--mpi N]
+                                                        [--report-only]
+
+Runs the members not yet done (python/study.py run; `kill -USR1 <pid of study.py>` stops a
+long member with a checkpoint and the next run continues it), then writes
+benchmarks/results/polar-convergence.csv with the columns
+  beta,epsilon,dofs,wall_time_s,err_xcm,err_vcell,err_circ
+polar-convergence.md (a table per beta with the ROC of each quantity, and the cost of a step
+split between flow, orientation field, phase field and remeshing) and
+polar-convergence-beta<beta>.png (the quantities against time). A cell that moves to the
+left is reflected about its initial centre (x_cm -> 2 x_cm(0) - x_cm, v_cell -> -v_cell), as
+the thesis does. With --mpi 2 on 2 cores a member takes about 10 (eps 0.42), 20 (0.3),
+35 (0.21) and 110 min (0.15) (the eps 0.21 member's cost: demos/polar-gel-splay/README.md).
+
+The finished members' time series are kept in
+benchmarks/results/polar-convergence-members/<study> (python/study_archive.py) and put back
+into a fresh output directory before the run, so the members of an earlier session are not
+rerun on a new machine.
+"""
+import argparse
+import csv
+import sys
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "python"))
+from results_csv import hand_written_notes  # noqa: E402
+from convergence_table import (add_arguments, error_rows, member_results,  # noqa: E402
+                               plot_members, run_ladder, table_lines)
+
+STUDIES = [ROOT / "benchmarks" / "studies" / f"polar-convergence{s}.yaml" for s in ("", "-beta0.05")]
+ARCHIVE = ROOT / "benchmarks" / "results" / "polar-convergence-members"
+QUANTITIES = [("center_x", "err_xcm", "x_cm"), ("cell_velocity_x", "err_vcell", "v_cell"),
+              ("circularity", "err_circ", "circularity")]
+COLUMNS = ["beta", "epsilon", "dofs", "wall_time_s", "err_xcm", "err_vcell", "err_circ"]
+
+
+def reflect_left_movers(results):
+    """Members whose cell ends left of its start, mirrored about the initial centre: the
+    thesis compares the motion, whichever way the instability chose (Fig. 6.9)."""
+    mirrored = []
+    for r in results:
+        x = np.asarray(r["obs"]["center_x"], dtype=float)
+        if x[-1] < x[0]:
+            r["obs"]["center_x"] = 2 * x[0] - x
+            r["obs"]["cell_velocity_x"] = -np.asarray(r["obs"]["cell_velocity_x"], dtype=float)
+            mirrored.append(f"eps = {r['eps']:g}")
+    return mirrored
+
+
+def cost_split(results):
+    """Mean wall time per step and its split: wall_flow and wall_polar are parts of the
+    assembly, factorisation and solve columns, the rest of those is the phase field;
+    remeshing is apart."""
+    lines = ["", "| eps | dofs | ranks | s/step | flow | orientation | phase field | remesh |",
+             "|---" * 8 + "|"]
+    for r in results:
+        o = {k: np.asarray(r["obs"][k][1:], dtype=float) for k in
+             ("wall_assembly", "wall_factorise", "wall_solve", "wall_remesh", "wall_output",
+              "wall_flow", "wall_polar")}
+        solve = o["wall_assembly"] + o["wall_factorise"] + o["wall_solve"]
+        total = solve + o["wall_remesh"] + o["wall_output"]
+        parts = [o["wall_flow"], o["wall_polar"], solve - o["wall_flow"] - o["wall_polar"],
+                 o["wall_remesh"]]
+        shares = " | ".join(f"{100 * p.sum() / total.sum():.0f} %" for p in parts)
+        lines.append(f"| {r['eps']:g} | {int(r['obs']['dofs'][-1])} | {r.get('ranks', 1)} | "
+                     f"{total.mean():.3f} | {shares} |")
+    return lines
+
+
+def half_of_table(study, args):
+    """The rows of polar-convergence.csv and the report's section for one value of beta."""
+    beta = study.common.get("polar_gel.beta", 0)
+    results, missing = member_results(study, minimum=0)
+    title = f"## beta = {beta:g}"
+    if len(results) < 2:
+        return [], [title, "", f"Fewer than two members finished ({len(results)})."] + \
+            [f"- {line}" for _, line in missing]
+    mirrored = reflect_left_movers(results)
+    rows, errors = error_rows(results, QUANTITIES, extra={"beta": beta})
+    lines = [title, ""]
+    lines += [f"- Reflected (moved left): {', '.join(mirrored)}.", ""] if mirrored else []
+    lines += table_lines(results, rows, errors, QUANTITIES, missing)
+    lines += cost_split(results)
+    png = f"polar-convergence-beta{beta:g}.png"
+    plot_members(results, QUANTITIES, args.results / png,
+                 f"Motile polar gel cell, beta = {beta:g}: the members of Table 6.2")
+    lines += ["", f"![the members against time]({png})", ""]
+    return rows, lines
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("studies", nargs="*", type=Path, default=STUDIES)
+    add_arguments(parser)
+    parser.add_argument("--archive", type=Path, default=ARCHIVE,
+                        help="finished members' time series, kept in the repository, one "
+                             f"folder per study (default {ARCHIVE.relative_to(ROOT)})")
+    args = parser.parse_args()
+    args.results.mkdir(parents=True, exist_ok=True)
+    all_rows = []
+    lines = ["# Table 6.2: convergence of the motile polar gel cell in epsilon", "",
+             "Studies: " + ", ".join(f"`{p.relative_to(ROOT) if p.is_relative_to(ROOT) else p}`"
+                                     for p in args.studies)
+             + "; relative error norm of section 5.3 against the finest finished member of "
+               "each half, ROC between neighbouring members. Cost per step: mean over the "
+               "steps, shares of the step's wall time.", ""]
+    for path in args.studies:
+        study = run_ladder(path, args.archive / path.stem, args)
+        rows, section = half_of_table(study, args)
+        all_rows += rows
+        lines += section
+    with open(args.results / "polar-convergence.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(all_rows)
+    report = args.results / "polar-convergence.md"
+    notes = hand_written_notes(report)
+    print("\n".join(lines))
+    if notes:
+        lines += ["", notes.rstrip("\n")]
+    report.write_text("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
