@@ -5,6 +5,7 @@ ROC against the finest finished member (relative error norm of thesis section 5.
 
 A quantity is a tuple (observables.csv column, CSV column of its error, name in the table).
 """
+import csv
 import subprocess
 import sys
 from pathlib import Path
@@ -15,6 +16,7 @@ import study as study_runner  # noqa: E402  (python/study.py)
 from study_file import load_study  # noqa: E402
 from study_report import convergence_errors  # noqa: E402
 from study_archive import archive_members, restore_members  # noqa: E402
+from results_csv import hand_written_notes  # noqa: E402
 
 
 def add_arguments(parser):
@@ -116,3 +118,18 @@ def plot_members(results, quantities, path, title):
     fig.suptitle(title)
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def write_results(results_dir, stem, rows, columns, lines):
+    """<stem>.csv from the rows (only the given columns) and <stem>.md from the lines, keeping
+    the report's hand-written discussion; the lines are printed too."""
+    with open(results_dir / f"{stem}.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    report = results_dir / f"{stem}.md"
+    notes = hand_written_notes(report)
+    print("\n".join(lines))
+    if notes:
+        lines = lines + ["", notes.rstrip("\n")]
+    report.write_text("\n".join(lines) + "\n")

@@ -25,7 +25,6 @@ The finished members' time series are kept in benchmarks/results/gtpase-converge
 the members of an earlier session are not rerun on a new machine.
 """
 import argparse
-import csv
 import sys
 from pathlib import Path
 
@@ -33,9 +32,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
-from results_csv import hand_written_notes  # noqa: E402
 from convergence_table import (add_arguments, error_rows, member_results,  # noqa: E402
-                               plot_members, run_ladder, table_lines)
+                               plot_members, run_ladder, table_lines, write_results)
 
 ARCHIVE = ROOT / "benchmarks" / "results" / "gtpase-convergence-members"
 QUANTITIES = [("center_x", "err_xcm", "x_cm"), ("cell_velocity_x", "err_vcm", "v_cm"),
@@ -78,10 +76,6 @@ def main():
     results, missing = member_results(study)
     rows, errors = error_rows(results, QUANTITIES)
     args.results.mkdir(parents=True, exist_ok=True)
-    with open(args.results / "gtpase-convergence.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
     lines = ["# Table 5.2: convergence of the motile GTPase cell in epsilon", "",
              f"Study: `{args.study.relative_to(ROOT) if args.study.is_relative_to(ROOT) else args.study}`; "
              "relative error norm of section 5.3 against the finest finished member, ROC "
@@ -91,13 +85,7 @@ def main():
     plot_members(results, QUANTITIES, args.results / "gtpase-convergence.png",
                  "Motile GTPase cell: the members of Table 5.2")
     lines += ["", "![the members against time](gtpase-convergence.png)"]
-    report = args.results / "gtpase-convergence.md"
-    notes = hand_written_notes(report)
-    print("\n".join(lines))
-    if notes:
-        lines += ["", notes.rstrip("\n")]
-    report.write_text("\n".join(lines) + "\n")
-
+    write_results(args.results, "gtpase-convergence", rows, list(rows[0]), lines)
 
 if __name__ == "__main__":
     main()

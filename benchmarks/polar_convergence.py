@@ -24,7 +24,6 @@ into a fresh output directory before the run, so the members of an earlier sessi
 rerun on a new machine.
 """
 import argparse
-import csv
 import sys
 from pathlib import Path
 
@@ -32,9 +31,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
-from results_csv import hand_written_notes  # noqa: E402
 from convergence_table import (add_arguments, error_rows, member_results,  # noqa: E402
-                               plot_members, run_ladder, table_lines)
+                               plot_members, run_ladder, table_lines, write_results)
 
 STUDIES = [ROOT / "benchmarks" / "studies" / f"polar-convergence{s}.yaml" for s in ("", "-beta0.05")]
 ARCHIVE = ROOT / "benchmarks" / "results" / "polar-convergence-members"
@@ -118,17 +116,7 @@ def main():
         rows, section = half_of_table(study, args)
         all_rows += rows
         lines += section
-    with open(args.results / "polar-convergence.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(all_rows)
-    report = args.results / "polar-convergence.md"
-    notes = hand_written_notes(report)
-    print("\n".join(lines))
-    if notes:
-        lines += ["", notes.rstrip("\n")]
-    report.write_text("\n".join(lines) + "\n")
-
+    write_results(args.results, "polar-convergence", all_rows, COLUMNS, lines)
 
 if __name__ == "__main__":
     main()
