@@ -15,8 +15,11 @@ polar-convergence.md (a table per beta with the ROC of each quantity, and the co
 split between flow, orientation field, phase field and remeshing) and
 polar-convergence-beta<beta>.png (the quantities against time). A cell that moves to the
 left is reflected about its initial centre (x_cm -> 2 x_cm(0) - x_cm, v_cell -> -v_cell), as
-the thesis does. With --mpi 2 on 2 cores a member takes about 10 (eps 0.42), 20 (0.3),
-35 (0.21) and 110 min (0.15) (the eps 0.21 member's cost: demos/polar-gel-splay/README.md).
+the thesis does. dt = eps / 3 on every member: the members have 3571, 5000, 7143 and
+10000 steps, about 63k, 108k, 199k and 371k dofs. With --mpi 2 on 2 cores the eps 0.21
+member costs about 70 min (the splay demo's eps 0.21 run, the same mesh and dt:
+demos/polar-gel-splay/README.md), the coarser ones less, the eps 0.15 member several hours
+(stop it with kill -USR1 and continue it later on the same machine).
 
 The finished members' time series are kept in
 benchmarks/results/polar-convergence-members/<study> (python/study_archive.py) and put back
