@@ -83,8 +83,14 @@ def half_of_table(study, args):
     results, missing = member_results(study, minimum=0)
     title = f"## beta = {beta:g}"
     if len(results) < 2:
-        return [], [title, "", f"Fewer than two members finished ({len(results)})."] + \
-            [f"- {line}" for _, line in missing]
+        lines = [title, "", f"Fewer than two members finished ({len(results)}): no errors yet."]
+        lines += [f"- eps = {r['eps']:g}: finished at t = {r['obs']['time'][-1]:g} after "
+                  f"{len(r['obs']['time']) - 1} steps in {r['wall']:.0f} s; v_cell "
+                  f"{float(r['obs']['cell_velocity_x'][-1]):.4g}, x_cm "
+                  f"{float(r['obs']['center_x'][-1]):.4g}, circularity "
+                  f"{float(r['obs']['circularity'][-1]):.4g}" for r in results]
+        lines += [f"- {line}" for _, line in missing]
+        return [], lines + (cost_split(results) if results else []) + [""]
     mirrored = reflect_left_movers(results)
     rows, errors = error_rows(results, QUANTITIES, extra={"beta": beta})
     lines = [title, ""]
