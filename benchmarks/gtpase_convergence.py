@@ -87,5 +87,6 @@ def main():
     lines += ["", "![the members against time](gtpase-convergence.png)"]
     write_results(args.results, "gtpase-convergence", rows, list(rows[0]), lines)
 
+
 if __name__ == "__main__":
     main()
