@@ -10,6 +10,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
@@ -95,6 +97,25 @@ def table_lines(results, rows, errors, quantities, missing):
             else:
                 cells += ["(reference)", ""]
         lines.append("| " + " | ".join(cells) + " |")
+    return lines
+
+
+def cost_table(results, sub_problems, columns):
+    """Mean wall time per step of every member and its shares. `sub_problems`: the wall_*
+    columns of the sub-problems timed inside the assembly, factorisation and solve columns;
+    the rest of those is the phase field ("phase"). `columns`: (heading, part) in table
+    order, a part being one of those columns, "phase", "wall_remesh" or "wall_factorise"."""
+    lines = ["| eps | dofs | ranks | s/step | " + " | ".join(h for h, _ in columns) + " |",
+             "|---" * (4 + len(columns)) + "|"]
+    for r in results:
+        o = {k: np.asarray(v[1:], dtype=float) for k, v in r["obs"].items()}
+        solve = o["wall_assembly"] + o["wall_factorise"] + o["wall_solve"]
+        total = solve + o["wall_remesh"] + o["wall_output"]
+        parts = {k: o[k] for k in [*sub_problems, "wall_remesh", "wall_factorise"]}
+        parts["phase"] = solve - sum(o[k] for k in sub_problems)
+        shares = " | ".join(f"{100 * parts[k].sum() / total.sum():.0f} %" for _, k in columns)
+        lines.append(f"| {r['eps']:g} | {int(r['obs']['dofs'][-1])} | {r.get('ranks', 1)} | "
+                     f"{total.mean():.3f} | {shares} |")
     return lines
 
 

@@ -28,12 +28,11 @@ import argparse
 import sys
 from pathlib import Path
 
-import numpy as np
-
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
-from convergence_table import (add_arguments, error_rows, member_results,  # noqa: E402
-                               plot_members, run_ladder, table_lines, write_results)
+from convergence_table import (add_arguments, cost_table, error_rows,  # noqa: E402
+                               member_results, plot_members, run_ladder, table_lines,
+                               write_results)
 
 ARCHIVE = ROOT / "benchmarks" / "results" / "gtpase-convergence-members"
 QUANTITIES = [("center_x", "err_xcm", "x_cm"), ("cell_velocity_x", "err_vcm", "v_cm"),
@@ -45,22 +44,12 @@ def cost_split(results):
     """Mean wall time per step of every member and how it splits between the sub-problems:
     wall_flow and wall_rd are parts of the assembly, factorisation and solve columns, the
     rest of those is the phase field (with its volume multiplier); remeshing is apart."""
-    lines = ["", "## Cost per step", "",
-             "Mean over the steps; shares of the step's wall time (the sum of its parts).", "",
-             "| eps | dofs | ranks | s/step | flow | phase field | reaction-diffusion | remesh "
-             "| factorisation (all) |", "|---" * 9 + "|"]
-    for r in results:
-        o = {k: np.asarray(v[1:], dtype=float) for k, v in r["obs"].items()}
-        solve = o["wall_assembly"] + o["wall_factorise"] + o["wall_solve"]
-        total = solve + o["wall_remesh"] + o["wall_output"]
-        parts = {"flow": o["wall_flow"], "rd": o["wall_rd"],
-                 "phase": solve - o["wall_flow"] - o["wall_rd"], "remesh": o["wall_remesh"],
-                 "factorise": o["wall_factorise"]}
-        share = {k: f"{100 * v.sum() / total.sum():.0f} %" for k, v in parts.items()}
-        lines.append(f"| {r['eps']:g} | {int(r['obs']['dofs'][-1])} | {r['ranks']} | "
-                     f"{total.mean():.3f} | {share['flow']} | {share['phase']} | {share['rd']} | "
-                     f"{share['remesh']} | {share['factorise']} |")
-    return lines
+    return ["", "## Cost per step", "",
+            "Mean over the steps; shares of the step's wall time (the sum of its parts).", ""] + \
+        cost_table(results, ["wall_flow", "wall_rd"],
+                   [("flow", "wall_flow"), ("phase field", "phase"),
+                    ("reaction-diffusion", "wall_rd"), ("remesh", "wall_remesh"),
+                    ("factorisation (all)", "wall_factorise")])
 
 
 def main():

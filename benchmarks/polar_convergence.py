@@ -35,8 +35,9 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
-from convergence_table import (add_arguments, error_rows, member_results,  # noqa: E402
-                               plot_members, run_ladder, table_lines, write_results)
+from convergence_table import (add_arguments, cost_table, error_rows,  # noqa: E402
+                               member_results, plot_members, run_ladder, table_lines,
+                               write_results)
 
 STUDIES = [ROOT / "benchmarks" / "studies" / f"polar-convergence{s}.yaml" for s in ("", "-beta0.05")]
 ARCHIVE = ROOT / "benchmarks" / "results" / "polar-convergence-members"
@@ -62,20 +63,9 @@ def cost_split(results):
     """Mean wall time per step and its split: wall_flow and wall_polar are parts of the
     assembly, factorisation and solve columns, the rest of those is the phase field;
     remeshing is apart."""
-    lines = ["", "| eps | dofs | ranks | s/step | flow | orientation | phase field | remesh |",
-             "|---" * 8 + "|"]
-    for r in results:
-        o = {k: np.asarray(r["obs"][k][1:], dtype=float) for k in
-             ("wall_assembly", "wall_factorise", "wall_solve", "wall_remesh", "wall_output",
-              "wall_flow", "wall_polar")}
-        solve = o["wall_assembly"] + o["wall_factorise"] + o["wall_solve"]
-        total = solve + o["wall_remesh"] + o["wall_output"]
-        parts = [o["wall_flow"], o["wall_polar"], solve - o["wall_flow"] - o["wall_polar"],
-                 o["wall_remesh"]]
-        shares = " | ".join(f"{100 * p.sum() / total.sum():.0f} %" for p in parts)
-        lines.append(f"| {r['eps']:g} | {int(r['obs']['dofs'][-1])} | {r.get('ranks', 1)} | "
-                     f"{total.mean():.3f} | {shares} |")
-    return lines
+    return [""] + cost_table(results, ["wall_flow", "wall_polar"],
+                             [("flow", "wall_flow"), ("orientation", "wall_polar"),
+                              ("phase field", "phase"), ("remesh", "wall_remesh")])
 
 
 def half_of_table(study, args):
