@@ -17,7 +17,8 @@ AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base
       levels_(scene::required_levels(scene)), h_base_(scene::base_cell_size(scene.domain)),
       threshold_(scene.numerics.mesh.refine_threshold),
       band_(2 * std::sqrt(2.0) * std::atanh(threshold_) * scene.numerics.epsilon),
-      inside_(scene.numerics.mesh.refine_inside.value_or(false))
+      inside_(scene.numerics.mesh.refine_inside.value_or(false)),
+      inside_levels_(levels_ - scene.numerics.mesh.inside_coarser_by)
 {
 }
 
@@ -28,7 +29,7 @@ std::shared_ptr<Mesh> AdaptiveMesh::build(const PointEvaluator& phi)
   double h = h_base_;
   for (int level = 0; level < levels_; ++level, h /= 2)
   {
-    const auto marked = mark(*mesh, phi, h);
+    const auto marked = mark(*mesh, phi, h, inside_ && level < inside_levels_);
     for (std::int32_t c : marked)
       for (double x : compat::cell_centroid(*mesh, c))
         history_[level].push_back(x);
@@ -73,7 +74,7 @@ std::shared_ptr<Mesh> AdaptiveMesh::replay(const std::vector<std::vector<double>
 }
 
 std::vector<std::int32_t> AdaptiveMesh::mark(const Mesh& mesh, const PointEvaluator& phi,
-                                             double h) const
+                                             double h, bool inside) const
 {
   // Sample each cell on a barycentric lattice fine enough (spacing below half the band
   // width) that a thin interface passing between the vertices of a coarse cell is seen.
@@ -110,7 +111,7 @@ std::vector<std::int32_t> AdaptiveMesh::mark(const Mesh& mesh, const PointEvalua
       const double val = values[c * lattice.size() + p];
       lo = std::min(lo, val), hi = std::max(hi, val), amin = std::min(amin, std::abs(val));
     }
-    if (amin < threshold_ || (lo < 0 && hi > 0) || (inside_ && hi > -threshold_))
+    if (amin < threshold_ || (lo < 0 && hi > 0) || (inside && hi > -threshold_))
       marked.push_back(c);
   }
   return marked;

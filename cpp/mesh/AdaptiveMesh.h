@@ -14,7 +14,7 @@ public:
   AdaptiveMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base);
 
   /// The base mesh refined `levels()` times wherever |phi| < threshold somewhere in a cell
-  /// (with refine_inside wherever phi > -threshold).
+  /// (with refine_inside wherever phi > -threshold, up to inside_coarser_by levels fewer).
   /// Records which cells it refined (see history()).
   std::shared_ptr<Mesh> build(const PointEvaluator& phi);
   /// The mesh of an earlier build() again, from its history (all ranks' centroids):
@@ -27,7 +27,8 @@ public:
   std::shared_ptr<Mesh> base() const { return base_; }
 
 private:
-  std::vector<std::int32_t> mark(const Mesh& mesh, const PointEvaluator& phi, double h) const;
+  std::vector<std::int32_t> mark(const Mesh& mesh, const PointEvaluator& phi, double h,
+                                 bool inside) const;
 
   std::shared_ptr<Mesh> base_;
   int levels_;
@@ -35,6 +36,7 @@ private:
   double threshold_;
   double band_; ///< width of the band |phi| < threshold
   bool inside_; ///< also refine where phi > -threshold (numerics.mesh.refine_inside)
+  int inside_levels_; ///< levels refined inside: levels_ - numerics.mesh.inside_coarser_by
   std::vector<std::vector<double>> history_;
 };
 } // namespace cellphase

@@ -174,7 +174,7 @@ void PolarGelSubProblem::connect(FieldRegistry& fields)
   system_ = std::make_unique<PeriodicSystem>(
       compat::create_form(*forms_.a, {V, V}, coeffs, constants_),
       compat::create_form(*forms_.L, {V}, coeffs, constants_), scene_, comm_, "polar_",
-      scene_.numerics.petsc, scene_.numerics.solver);
+      scene_.numerics.petsc, scene::polar_gel_solver(scene_));
 
   if (scene_.flow)
   {

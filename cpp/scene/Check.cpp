@@ -300,8 +300,11 @@ SizeEstimate estimate_size(const Scene& s)
     const double fine_volume = d.dim == 2 ? h * h / 2 : h * h * h / 6;
     e.refined_cells = e.interface_measure * band / fine_volume;
     if (s.numerics.mesh.refine_inside.value_or(false))
+    {
+      const double coarser = std::pow(d.dim == 2 ? 4.0 : 8.0, s.numerics.mesh.inside_coarser_by);
       for (const Cell& c : s.cells)
-        e.refined_cells += enclosed_measure(d, SignedDistance(c, d.dim)) / fine_volume;
+        e.refined_cells += enclosed_measure(d, SignedDistance(c, d.dim)) / (fine_volume * coarser);
+    }
     // Never more than the base mesh refined everywhere (a band wider than the domain).
     const double uniform = e.base_cells * std::pow(d.dim == 2 ? 4.0 : 8.0, required_levels(s));
     e.refined_cells = std::min(e.refined_cells, uniform - e.base_cells);
@@ -432,9 +435,15 @@ std::string check_report(const Scene& s)
     r.line("points across", fmt(interface_width(eps) / h) + " mesh points across the interface "
                                 "(requested " + fmt(s.numerics.mesh.points_across_interface)
                                 + ")");
-    r.line("refined", s.numerics.mesh.refine_inside.value_or(false)
+    const int coarser = s.numerics.mesh.inside_coarser_by;
+    r.line("refined", !s.numerics.mesh.refine_inside.value_or(false)
+                          ? "the interfaces"
+                      : coarser == 0
                           ? "the interfaces and the cells' interiors (refine_inside)"
-                          : "the interfaces");
+                          : "the interfaces, and the cells' interiors to cell size "
+                                + fmt(std::ldexp(h, coarser)) + " (refine_inside, "
+                                + std::to_string(coarser) + " level" + (coarser > 1 ? "s" : "")
+                                + " coarser: inside_coarser_by)");
   }
   else
   {

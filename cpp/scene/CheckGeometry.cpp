@@ -205,6 +205,17 @@ void check_geometry(const Section& top, const Scene& s)
             + "; set numerics.mesh.max_levels to " + std::to_string(levels)
             + ", or " + finer + ", or lower numerics.mesh.points_across_interface, or raise numerics.epsilon");
   }
+  const int coarser = s.numerics.mesh.inside_coarser_by;
+  if (coarser > 0 && !s.numerics.mesh.refine_inside.value_or(false))
+    top.section("numerics").section("mesh").fail(
+        "inside_coarser_by", "needs the interior refined (refine_inside: true, the default "
+                             "with polar_gel); here only the interfaces are refined");
+  if (coarser > 0 && coarser >= levels)
+    top.section("numerics").section("mesh").fail(
+        "inside_coarser_by", "found " + std::to_string(coarser) + ", expected less than the "
+                             + std::to_string(levels) + " refinement levels (with "
+                             + std::to_string(levels) + " or more the interior is the base "
+                             "mesh: set refine_inside: false instead)");
 }
 
 } // namespace cellphase::scene

@@ -11,14 +11,14 @@ namespace
 void read_mesh(const Section& m, Mesh& mesh)
 {
   m.allow_only({"adaptive", "remesh_every", "points_across_interface", "refine_threshold",
-                "refine_inside", "max_levels", "cell_meshes", "own_margin", "partition",
-                "stripe_width"});
+                "refine_inside", "inside_coarser_by", "max_levels", "cell_meshes", "own_margin",
+                "partition", "stripe_width"});
   mesh.adaptive = m.boolean("adaptive", mesh.adaptive);
   if (!mesh.adaptive)
   {
     // The uniform base mesh: the refinement keys would have no effect.
     for (const char* key : {"remesh_every", "points_across_interface", "refine_threshold",
-                            "refine_inside", "max_levels"})
+                            "refine_inside", "inside_coarser_by", "max_levels"})
       if (m.has(key))
         m.fail(key, "has no effect with numerics.mesh.adaptive: false (the base mesh of "
                     "domain.resolution is used as it is); remove it");
@@ -31,6 +31,7 @@ void read_mesh(const Section& m, Mesh& mesh)
   mesh.refine_threshold = m.number("refine_threshold", mesh.refine_threshold, open(0, 1));
   if (m.has("refine_inside"))
     mesh.refine_inside = m.boolean("refine_inside", false);
+  mesh.inside_coarser_by = m.integer("inside_coarser_by", 0, closed(0, 20));
   mesh.max_levels = m.integer("max_levels", mesh.max_levels, closed(0, 20));
   mesh.cell_meshes = m.choice<Mesh::CellMeshes>(
       "cell_meshes", mesh.cell_meshes,

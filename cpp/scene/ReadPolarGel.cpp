@@ -26,7 +26,7 @@ void read_polar_gel(const Section& top, Scene& s)
     return;
   }
   const Section p = top.section("polar_gel");
-  p.allow_only({"activity", "xi", "kappa", "c1", "beta", "stabilisation", "initial"});
+  p.allow_only({"activity", "xi", "kappa", "c1", "beta", "stabilisation", "initial", "solver"});
   if (s.phase_field.model != Model::helfrich_hm1)
     top.section("phase_field").fail("model", std::string("is ") + to_string(s.phase_field.model)
                                                  + "; polar_gel needs helfrich_hm1 (the H^-1 "
@@ -69,6 +69,8 @@ void read_polar_gel(const Section& top, Scene& s)
   g.kappa = p.number("kappa", g.kappa, positive());
   g.c1 = p.number("c1", g.c1, non_negative());
   g.beta = p.number("beta", g.beta, any());
+  if (p.has("solver"))
+    g.solver = read_solver(p, Numerics::Solver::direct);
   // Twice the feedback (1 + xi)^2 |P|^2 / (4 eta) of the explicit alignment stress on P
   // (|P| ~ 1 in the cell), which the stabilisation must exceed (forms/polar_gel.py).
   const double eta_min = s.flow ? std::min(s.flow->viscosity[0], s.flow->viscosity[1]) : 0;

@@ -122,6 +122,11 @@ Numerics::Solver reaction_diffusion_solver(const Scene& s)
                                                               : s.numerics.solver;
 }
 
+Numerics::Solver polar_gel_solver(const Scene& s)
+{
+  return s.polar_gel && s.polar_gel->solver ? *s.polar_gel->solver : s.numerics.solver;
+}
+
 double flow_capillary(const Scene& s)
 {
   if (is_helfrich(s.phase_field.model))

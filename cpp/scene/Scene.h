@@ -165,6 +165,10 @@ struct Mesh
   /// Refine the cells' interiors (phi > -threshold) as finely as the interface; absent:
   /// true with polar_gel (P lives inside the cell, section 6.3), else false.
   std::optional<bool> refine_inside;
+  /// With refine_inside: refinement levels the interior stays coarser than the interface
+  /// (its cells 2^k times the interface's). P varies on the cell's scale inside, on
+  /// epsilon's only across the interface, whose band keeps the finest level.
+  int inside_coarser_by = 0;
   /// Where each phase field is solved: on the one mesh refined around all cells (shared),
   /// or on its own patch of the base mesh refined around its cell only (own), which makes
   /// the cells' cost linear in their number (section 7.2).
@@ -414,6 +418,8 @@ struct PolarGel
   /// of the same perturbation (Fig. 6.7).
   bool mirror = false;
   std::uint64_t seed = 1;
+  /// How the orientation field's matrices are solved; absent: numerics.solver.
+  std::optional<Numerics::Solver> solver;
 };
 
 struct Scene
@@ -460,6 +466,8 @@ double flow_reynolds(const Scene& s);
 Numerics::Solver flow_solver(const Scene& s);
 /// reaction_diffusion.solver, else numerics.solver.
 Numerics::Solver reaction_diffusion_solver(const Scene& s);
+/// polar_gel.solver, else numerics.solver.
+Numerics::Solver polar_gel_solver(const Scene& s);
 /// Prefactor of the interface force (dE/dphi) grad phi: 3 sigma / (2 sqrt2) = 1/Ca (3.13)
 /// for Cahn-Hilliard (mu unscaled there), 1 for the Helfrich models (dE/dphi itself).
 double flow_capillary(const Scene& s);
