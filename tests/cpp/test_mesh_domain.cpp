@@ -261,3 +261,65 @@ TEST(MeshDomain, RefinedMeshKeepsItsTags)
   EXPECT_EQ(compat::num_global_cells(*again), compat::num_global_cells(*fine));
   EXPECT_NEAR(facets_length(*again, tagged_facets(*again, d, {inflow})), 1.0, 1e-12);
 }
+
+namespace
+{
+/// Mean area of the local cells whose centroid lies at a distance from (2, 2) in [lo, hi).
+double mean_area(const Mesh& mesh, double lo, double hi)
+{
+  double sum = 0, count = 0;
+  for (std::int32_t c = 0; c < compat::num_owned_cells(mesh); ++c)
+  {
+    const auto v = compat::cell_vertex_coordinates(mesh, c);
+    const double r = std::hypot((v[0] + v[3] + v[6]) / 3 - 2, (v[1] + v[4] + v[7]) / 3 - 2);
+    if (r < lo || r >= hi)
+      continue;
+    sum += 0.5 * std::abs((v[3] - v[0]) * (v[7] - v[1]) - (v[6] - v[0]) * (v[4] - v[1]));
+    count += 1;
+  }
+  double both[2] = {sum, count};
+  MPI_Allreduce(MPI_IN_PLACE, both, 2, MPI_DOUBLE, MPI_SUM, mesh.comm());
+  return both[0] / both[1];
+}
+} // namespace
+
+TEST(AdaptiveMesh, CoarserInteriorKeepsTheInterfaceBandFinest)
+{
+  // numerics.mesh.inside_coarser_by: the band around the zero level set keeps the finest
+  // cells, the interior (phi > -threshold away from the band) is refined one level less,
+  // so its cells have about 4 times the area (bisection mixes halves and quarters, hence
+  // the ranges).
+  auto scene_with = [](int coarser)
+  {
+    const std::string yaml =
+        "domain: {lower: [0, 0], upper: [4, 4], resolution: [8, 8]}\n"
+        "cells: [{shape: circle, center: [2, 2], radius: 1}]\n"
+        "phase_field: {model: helfrich_penalty}\n"
+        "numbers: {Re: 0, Ca: 1, Be: 1}\n"
+        "numerics: {epsilon: 0.04, dt: 1.0e-3, end_time: 1.0e-3, mesh: "
+        "{points_across_interface: 3, refine_inside: true, inside_coarser_by: "
+        + std::to_string(coarser) + "}}\n";
+    return scene::parse_scene(yaml, "test.yaml", {});
+  };
+  auto phi = [](std::span<const double> pts, std::span<double> values)
+  {
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] = std::tanh((1 - std::hypot(pts[3 * i] - 2, pts[3 * i + 1] - 2))
+                            / (std::sqrt(2.0) * 0.04));
+  };
+  const auto fine_scene = scene_with(0), coarse_scene = scene_with(1);
+  AdaptiveMesh fine_builder(fine_scene, MPI_COMM_WORLD), coarse_builder(coarse_scene, MPI_COMM_WORLD);
+  auto fine = fine_builder.build(phi);
+  auto coarse = coarse_builder.build(phi);
+  const double band_fine = mean_area(*fine, 0.97, 1.03), band_coarse = mean_area(*coarse, 0.97, 1.03);
+  const double inside_fine = mean_area(*fine, 0, 0.6), inside_coarse = mean_area(*coarse, 0, 0.6);
+  std::printf("levels %d; mean area in the band %.3g / %.3g, inside %.3g / %.3g; cells %lld / %lld\n",
+              fine_builder.levels(), band_fine, band_coarse, inside_fine, inside_coarse,
+              (long long)compat::num_global_cells(*fine), (long long)compat::num_global_cells(*coarse));
+  EXPECT_NEAR(band_coarse / band_fine, 1.0, 0.05); // the band keeps the finest level
+  EXPECT_GT(inside_fine / band_fine, 0.5);            // fine interior: the band's size
+  EXPECT_LT(inside_fine / band_fine, 2.0);
+  EXPECT_GT(inside_coarse / inside_fine, 3.0);        // one level less: about 4 times
+  EXPECT_LT(inside_coarse / inside_fine, 5.0);
+  EXPECT_LT(compat::num_global_cells(*coarse), compat::num_global_cells(*fine));
+}
