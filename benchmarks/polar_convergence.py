@@ -16,11 +16,13 @@ split between flow, orientation field, phase field and remeshing) and
 polar-convergence-beta<beta>.png (the quantities against time). A cell that moves to the
 left is reflected about its initial centre (x_cm -> 2 x_cm(0) - x_cm, v_cell -> -v_cell), as
 the thesis does. dt = eps / 3 on every member: the members have about 3570, 5000, 7140
-and 10000 steps and 60k, 108k, 199k and 371k dofs; the eps 0.42 members took 25 min on one
-core each (benchmarks/results/polar-convergence.md). With --mpi 2 on 2 cores the eps 0.21
-member costs about 70 min (the splay demo's eps 0.21 run, the same mesh and dt:
-demos/polar-gel-splay/README.md), the coarser ones less, the eps 0.15 member several hours
-(stop it with kill -USR1 and continue it later on the same machine).
+and 10000 steps. The studies refine the interior one level less than the interface band
+and reuse the orientation field's factors (see the study files): the eps 0.42 members have
+54k dofs and took 20 min on one core each, side by side. With --mpi 2 on 2 cores the
+eps 0.21 member costs about 0.7-0.8 s per step on a machine where the splay demo's
+settings take 1.27 s (demos/polar-gel-splay/README.md, "Faster at epsilon = 0.21"), the
+eps 0.15 member several hours (stop it with kill -USR1 and continue it later on the same
+machine).
 
 The finished members' time series are kept in
 benchmarks/results/polar-convergence-members/<study> (python/study_archive.py) and put back
