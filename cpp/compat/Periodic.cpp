@@ -176,7 +176,7 @@ void PeriodicConstraint::assemble_vector(la::Vector<T>& b, const Form& L,
                                          std::shared_ptr<const Form> a, const BCs& bcs) const
 {
   b.set(0.0);
-  assemble_unscattered(b, L);
+  add_load(b, L);
   add_lifting(b, a, bcs);
   b.scatter_rev(std::plus<T>());
   fem::set_bc<T>(b.mutable_array(), bcs);
@@ -193,7 +193,7 @@ void PeriodicConstraint::assemble_local(la::Vector<T>& b, const Form& L,
                                         const la::Vector<T>* lifting) const
 {
   b.set(0.0);
-  assemble_unscattered(b, L);
+  add_load(b, L);
   if (lifting)
     std::transform(b.array().begin(), b.array().end(), lifting->array().begin(),
                    b.mutable_array().begin(), std::plus<T>());
@@ -212,7 +212,7 @@ void PeriodicConstraint::lifting(la::Vector<T>& l, std::shared_ptr<const Form> a
   add_lifting(l, a, bcs);
 }
 
-void PeriodicConstraint::assemble_unscattered(la::Vector<T>& b, const Form& L) const
+void PeriodicConstraint::add_load(la::Vector<T>& b, const Form& L) const
 {
   if (mpc_)
     dolfinx_mpc::assemble_vector(b.mutable_array(), L, mpc_);

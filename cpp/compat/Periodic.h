@@ -66,10 +66,11 @@ public:
   void assemble_local(dolfinx::la::Vector<T>& b, const Form& L,
                       const dolfinx::la::Vector<T>* lifting = nullptr) const;
   void finish(dolfinx::la::Vector<T>& b, const BCs& bcs, double bc_scale) const;
+  /// b += L on owned and ghost entries (no ghost accumulation, no BC values): several
+  /// loads summed into one right-hand side before finish().
+  void add_load(dolfinx::la::Vector<T>& b, const Form& L) const;
 
 private:
-  /// b += L on owned and ghost entries (no ghost accumulation, no BC values).
-  void assemble_unscattered(dolfinx::la::Vector<T>& b, const Form& L) const;
   /// b += -A g (the Dirichlet values of bcs and the constant slave parts through a).
   void add_lifting(dolfinx::la::Vector<T>& b, std::shared_ptr<const Form> a, const BCs& bcs) const;
 

@@ -1,7 +1,9 @@
 #include "mesh/AdaptiveMesh.h"
 #include "mesh/BaseMesh.h"
+#include "mesh/PeriodicFaces.h"
 #include "mesh/PointLookup.h"
 #include "scene/Resolution.h"
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,7 +15,7 @@ AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, MPI_Comm comm)
 }
 
 AdaptiveMesh::AdaptiveMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base)
-    : base_(base),
+    : base_(base), domain_(scene.domain),
       levels_(scene::required_levels(scene)), h_base_(scene::base_cell_size(scene.domain)),
       threshold_(scene.numerics.mesh.refine_threshold),
       band_(2 * std::sqrt(2.0) * std::atanh(threshold_) * scene.numerics.epsilon),
@@ -29,13 +31,39 @@ std::shared_ptr<Mesh> AdaptiveMesh::build(const PointEvaluator& phi)
   double h = h_base_;
   for (int level = 0; level < levels_; ++level, h /= 2)
   {
-    const auto marked = mark(*mesh, phi, h, inside_ && level < inside_levels_);
+    auto marked = mark(*mesh, phi, h, inside_ && level < inside_levels_);
+    auto refined = refine_matching_faces(*mesh, marked);
     for (std::int32_t c : marked)
       for (double x : compat::cell_centroid(*mesh, c))
         history_[level].push_back(x);
-    mesh = compat::refine_cells(*mesh, marked);
+    mesh = refined;
   }
   return mesh;
+}
+
+std::shared_ptr<Mesh> AdaptiveMesh::refine_matching_faces(Mesh& mesh,
+                                                          std::vector<std::int32_t>& marked) const
+{
+  auto refined = compat::refine_cells(mesh, marked);
+  // Each round splits the edges of the other face where one face got a vertex; those
+  // splits may add vertices elsewhere on the faces (conformity), hence the rounds. A round
+  // that finds no edge to split (a patch of the base mesh that holds one face only) ends it.
+  for (int round = 0; round < 10 && !domain_.periodic.empty(); ++round)
+  {
+    const auto points = unmatched_periodic_points(*refined, domain_);
+    if (points.empty())
+      break;
+    const auto extra = cells_splitting_at(mesh, points, domain_);
+    std::int64_t found = extra.size();
+    MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPI_INT64_T, MPI_SUM, mesh.comm());
+    if (found == 0)
+      break;
+    marked.insert(marked.end(), extra.begin(), extra.end());
+    std::sort(marked.begin(), marked.end());
+    marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
+    refined = compat::refine_cells(mesh, marked);
+  }
+  return refined;
 }
 
 std::shared_ptr<Mesh> AdaptiveMesh::replay(const std::vector<std::vector<double>>& history)

@@ -15,7 +15,7 @@ public:
 
   /// The base mesh refined `levels()` times wherever |phi| < threshold somewhere in a cell
   /// (with refine_inside wherever phi > -threshold, up to inside_coarser_by levels fewer).
-  /// Records which cells it refined (see history()).
+  /// Periodic faces are refined alike. Records which cells it refined (see history()).
   std::shared_ptr<Mesh> build(const PointEvaluator& phi);
   /// The mesh of an earlier build() again, from its history (all ranks' centroids):
   /// the same cells whatever the number of ranks. Throws std::runtime_error if the
@@ -29,8 +29,12 @@ public:
 private:
   std::vector<std::int32_t> mark(const Mesh& mesh, const PointEvaluator& phi, double h,
                                  bool inside) const;
+  /// mesh refined at `marked` and at the cells added to `marked` so that the refined
+  /// periodic faces match (mesh/PeriodicFaces.h). Collective.
+  std::shared_ptr<Mesh> refine_matching_faces(Mesh& mesh, std::vector<std::int32_t>& marked) const;
 
   std::shared_ptr<Mesh> base_;
+  scene::Domain domain_; ///< its periodic axes and box, for refine_matching_faces
   int levels_;
   double h_base_;
   double threshold_;

@@ -128,7 +128,7 @@ void FlowSubProblem::attach(FieldRegistry& fields)
       force_forms_.push_back(L);
     }
     force_projection_ = std::make_unique<L2Projection>(
-        *compat::create_form(*forms.a, {Vf, Vf}, {}, {}), comm_, "force_");
+        *compat::create_form(*forms.a, {Vf, Vf}, {}, {}), scene_.domain, comm_, "force_");
     prepare_cell_force(phi_cells);
   }
   fields.set("flow.v", flow_.velocity());

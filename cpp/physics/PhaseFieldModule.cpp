@@ -192,7 +192,7 @@ std::shared_ptr<const Function> PhaseFieldModule::interface_potential()
     CoefficientMap coeffs{{"phi_h", fields_.at("phi")}, {"mu_h", fields_.at("mu")}};
     dE_rhs_ = compat::create_form(*forms_.L_dE, {V_}, coeffs, constants_);
     dE_projection_ = std::make_unique<L2Projection>(
-        *compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_), comm_, "mass_");
+        *compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_), scene_.domain, comm_, "mass_");
     update_interface_potential();
   }
   return dE_;
@@ -233,7 +233,7 @@ void PhaseFieldModule::set_interaction(std::shared_ptr<const Function> w_sum,
   if (interaction_projection_)
     return; // one projection of the sum over the potentials
   interaction_projection_ = std::make_unique<L2Projection>(
-      *compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_), comm_, "interaction_");
+      *compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_), scene_.domain, comm_, "interaction_");
   interaction_of_step_ = std::make_shared<Function>(V_);
   interaction_now_ = std::make_shared<Function>(V_);
   if (!in_flow_force) // gamma Lap(w + P(source)): w, which the flow reads, stays without it

@@ -159,7 +159,7 @@ void PolarGelSubProblem::project_sharp()
   {
     sharp_L_ = compat::create_form(*forms_.L_sharp, {V}, {{"Pi", P_}, {"phi", phi_}}, constants_);
     sharp_projection_ = std::make_unique<L2Projection>(
-        *compat::create_form(*mass_forms_.a, {V, V}, {}, {}), comm_, "polar_sharp_");
+        *compat::create_form(*mass_forms_.a, {V, V}, {}, {}), scene_.domain, comm_, "polar_sharp_");
   }
   sharp_projection_->project(*sharp_L_, *P_sharp_, "the projection of P# (6.17)");
 }
@@ -185,7 +185,7 @@ void PolarGelSubProblem::connect(FieldRegistry& fields)
     force_L_ = compat::create_form(*forms_.force_L, {Vf},
                                    {{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}}, constants_);
     force_projection_ = std::make_unique<L2Projection>(
-        *compat::create_form(*mass_forms_.a, {Vf, Vf}, {}, {}), comm_, "polar_force_");
+        *compat::create_form(*mass_forms_.a, {Vf, Vf}, {}, {}), scene_.domain, comm_, "polar_force_");
     update_force();
     fields.set("polar.force", force_);
   }

@@ -176,7 +176,7 @@ void ReactionDiffusionSubProblem::connect(FieldRegistry& fields)
     force_L_ = compat::create_form(*force_forms_.L, {Vf},
                                    {{"phi", phi_}, {"mu", species_[protrusion_]}}, c);
     force_projection_ = std::make_unique<L2Projection>(
-        *compat::create_form(*force_forms_.a, {Vf, Vf}, {}, {}), comm_, "rd_force_");
+        *compat::create_form(*force_forms_.a, {Vf, Vf}, {}, {}), scene_.domain, comm_, "rd_force_");
     update_force();
     fields.set("rd.force", force_);
   }

@@ -53,10 +53,15 @@ Mat scalar_block(Mat A, int k)
 }
 } // namespace
 
-L2Projection::L2Projection(const Form& mass, MPI_Comm comm, const std::string& prefix)
+L2Projection::L2Projection(const Form& mass, const scene::Domain& domain, MPI_Comm comm,
+                           const std::string& prefix)
 {
-  mass_ = create_matrix(mass);
-  assemble_matrix(mass_->mat(), mass, {});
+  // Slave rows are identity rows, alike in every component, so the scalar block below
+  // still serves all components.
+  periodic_ = std::make_unique<PeriodicConstraint>(mass.function_spaces()[0], domain.lower,
+                                                   domain.upper, domain.periodic);
+  mass_ = std::make_unique<dolfinx::la::petsc::Matrix>(periodic_->create_matrix(mass));
+  periodic_->assemble_matrix(mass_->mat(), mass, {});
   const int k = mass.function_spaces()[0]->dofmap()->index_map_bs();
   if (k > 1)
     if (Mat M = scalar_block(mass_->mat(), k))
@@ -72,21 +77,29 @@ L2Projection::L2Projection(const Form& mass, MPI_Comm comm, const std::string& p
   solver_->set_operator(mass_->mat());
 }
 
+L2Projection::~L2Projection() = default;
+
 void L2Projection::project(const std::vector<const Form*>& forms, Function& out,
                            const std::string& what)
 {
   const auto& V = *out.function_space();
   const auto map = V.dofmap()->index_map;
   const int k = V.dofmap()->index_map_bs();
-  dolfinx::la::Vector<T> b(map, k);
+  auto b = periodic_->create_vector(), x = periodic_->create_vector();
   b.set(0.0);
   for (const Form* L : forms)
-    dolfinx::fem::assemble_vector(b.mutable_array(), *L);
-  b.scatter_rev(std::plus<T>());
+    periodic_->add_load(b, *L);
+  periodic_->finish(b, {}, 1.0);
+  // The slaves' values from their masters, then copied into out (ghosts included).
+  auto finish = [&]
+  {
+    periodic_->backsubstitute(x, out);
+    out.x()->scatter_fwd();
+  };
   if (components_ == 1)
   {
-    solver_->solve(b, *out.x(), what);
-    out.x()->scatter_fwd();
+    solver_->solve(b, x, what);
+    finish();
     return;
   }
   if (k != components_)
@@ -108,13 +121,13 @@ void L2Projection::project(const std::vector<const Form*>& forms, Function& out,
     sol.push_back(xc.back().get());
   }
   solver_->solve(rhs, sol, what);
-  auto x = out.x()->mutable_array();
+  auto xa = x.mutable_array();
   for (int c = 0; c < k; ++c)
   {
     auto xs = xc[c]->array();
     for (std::int32_t i = 0; i < n; ++i)
-      x[i * k + c] = xs[i];
+      xa[i * k + c] = xs[i];
   }
-  out.x()->scatter_fwd();
+  finish();
 }
 } // namespace cellphase

@@ -7,8 +7,15 @@
 // scalar one, one per component, with nothing between components. Then only the scalar
 // matrix is factorised, and the k components are solved with it as k right-hand sides:
 // a factorisation of a k-times smaller matrix with about k^2 times fewer entries.
+//
+// On a periodic domain the projection is made under the periodic constraint: the loads
+// hold weak derivatives (eps Lap phi, the Frank term of P#), which are only right at a
+// periodic face with both sides' elements. Unconstrained, the face saw one side, as if it
+// were a wall, and a cell crossing it changed its speed by a tenth.
 #pragma once
 #include "compat/Dolfinx.h"
+#include "compat/Periodic.h"
+#include "scene/Scene.h"
 #include "solve/LinearSolver.h"
 #include <memory>
 #include <string>
@@ -19,8 +26,11 @@ namespace cellphase
 class L2Projection
 {
 public:
-  /// `mass` is the bilinear form of M on V (with its constants); `prefix` names the solver.
-  L2Projection(const Form& mass, MPI_Comm comm, const std::string& prefix);
+  /// `mass` is the bilinear form of M on V (with its constants); V is periodic along the
+  /// domain's periodic axes; `prefix` names the solver.
+  L2Projection(const Form& mass, const scene::Domain& domain, MPI_Comm comm,
+               const std::string& prefix);
+  ~L2Projection();
 
   /// out = M^-1 (sum of the linear forms); `what` names the projection in an error.
   void project(const std::vector<const Form*>& forms, Function& out, const std::string& what);
@@ -33,6 +43,7 @@ public:
   int components() const { return components_; }
 
 private:
+  std::unique_ptr<PeriodicConstraint> periodic_; ///< plain assembly without periodic axes
   std::unique_ptr<dolfinx::la::petsc::Matrix> mass_;
   std::unique_ptr<LinearSolver> solver_;
   int components_ = 1;

@@ -81,7 +81,8 @@ Errors solve_mms(int n, double S)
   solve_linear(compat::create_form(*form_mms_polar_gel_a, {V, V}, coeffs, c),
                *compat::create_form(*form_mms_polar_gel_L_mms, {V}, coeffs, c), *uh);
   // P# of the new P as the program makes it (PolarGelSubProblem::project_sharp).
-  L2Projection(*compat::create_form(*form_mms_polar_gel_mass, {V, V}, coeffs, c), MPI_COMM_WORLD, "mms_sharp_")
+  L2Projection(*compat::create_form(*form_mms_polar_gel_mass, {V, V}, coeffs, c), scene::Domain{}, MPI_COMM_WORLD,
+               "mms_sharp_")
       .project(*compat::create_form(*form_mms_polar_gel_L_sharp_h, {V}, coeffs, c), *Psh, "mms P#");
   auto eP = compat::create_form(*form_mms_polar_gel_error_P, {}, coeffs, c, mesh);
   auto eS = compat::create_form(*form_mms_polar_gel_error_Ps, {}, coeffs, c, mesh);
