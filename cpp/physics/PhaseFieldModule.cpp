@@ -354,10 +354,12 @@ void PhaseFieldModule::compute_mu_from_phi()
   CoefficientMap coeffs{{"phi_init", fields_.at("phi")}};
   auto a = compat::create_form(*forms_.a_mu, {V_, V_}, {}, constants_);
   auto L = compat::create_form(*forms_.L_mu, {V_}, coeffs, constants_);
-  auto M = create_matrix(*a);
-  assemble_matrix(M->mat(), *a, {});
-  la::Vector<T> b(V_->dofmap()->index_map, 1);
-  assemble_rhs(b, *L, a, {});
+  // Under the periodic constraint: eps Lap phi is a weak derivative (see L2Projection.h).
+  PeriodicConstraint periodic(V_, scene_.domain.lower, scene_.domain.upper, scene_.domain.periodic);
+  la::petsc::Matrix M = periodic.create_matrix(*a);
+  periodic.assemble_matrix(M.mat(), *a, {});
+  auto b = periodic.create_vector(), x = periodic.create_vector();
+  periodic.assemble_vector(b, *L, a, {});
   // One solve with the mass matrix: conjugate gradients with its diagonal converge in a few
   // dozen iterations whatever the mesh grading, where a factorisation took a third of the
   // start-up of a run.
@@ -365,8 +367,11 @@ void PhaseFieldModule::compute_mu_from_phi()
                     {{"ksp_type", "cg"}, {"pc_type", "jacobi"}, {"ksp_rtol", "1e-13"},
                      {"ksp_atol", "1e-300"}, {"ksp_max_it", "1000"}},
                     Symmetry::positive_definite);
-  mass.set_operator(M->mat());
-  mass.solve(b, *fields_.at("mu")->x(), "the initial mu projection");
+  mass.set_operator(M.mat());
+  mass.solve(b, x, "the initial mu projection");
+  auto& mu = *fields_.at("mu");
+  periodic.backsubstitute(x, mu);
+  mu.x()->scatter_fwd();
 }
 
 void PhaseFieldModule::update_multipliers(double dt)

@@ -4,11 +4,13 @@
 //   up to the tag lengths;
 // * Poiseuille flow with tagged walls: the parabola (in P2 x P1) to round-off, and the
 //   same flow as the box with side walls when the box mesh is given as a mesh file;
-// * after adaptive refinement the boundary facets still carry their tags (lengths kept).
+// * after adaptive refinement the boundary facets still carry their tags (lengths kept);
+// * a cell across a periodic face: both faces are refined alike.
 #include "app/FlowSetup.h"
 #include "compat/Dolfinx.h"
 #include "mesh/AdaptiveMesh.h"
 #include "mesh/BoundaryTags.h"
+#include "mesh/PeriodicFaces.h"
 #include "mpi_main.h"
 #include "scene/MeshDomain.h"
 #include "scene/SceneLoader.h"
@@ -322,4 +324,44 @@ TEST(AdaptiveMesh, CoarserInteriorKeepsTheInterfaceBandFinest)
   EXPECT_GT(inside_coarse / inside_fine, 3.0);        // one level less: about 4 times
   EXPECT_LT(inside_coarse / inside_fine, 5.0);
   EXPECT_LT(compat::num_global_cells(*coarse), compat::num_global_cells(*fine));
+}
+
+TEST(AdaptiveMesh, PeriodicFacesAreRefinedAlike)
+{
+  // A circle across the face x = 0 of a box periodic in x: the refinement around its band
+  // reaches the face from both sides, and each side's cells are marked on their own. The
+  // faces must end up with the same vertices (else the periodic constraint ties the fine
+  // side to the coarse side's trace, which cannot resolve the interface).
+  const std::string yaml = "domain: {lower: [0, 0], upper: [4, 4], resolution: [8, 8], "
+                           "periodic: [x]}\n"
+                           "cells: [{shape: circle, center: [2, 2], radius: 1}]\n"
+                           "phase_field: {model: helfrich_penalty}\n"
+                           "numbers: {Re: 0, Ca: 1, Be: 1}\n"
+                           "numerics: {epsilon: 0.04, dt: 1.0e-3, end_time: 1.0e-3, mesh: "
+                           "{points_across_interface: 3, refine_inside: true, inside_coarser_by: 1}}\n";
+  const auto s = scene::parse_scene(yaml, "test.yaml", {});
+  for (double cx : {0.3, 3.85, 0.0})
+  {
+    auto phi = [cx](std::span<const double> pts, std::span<double> values)
+    {
+      for (std::size_t i = 0; i < values.size(); ++i)
+      {
+        double dx = std::abs(pts[3 * i] - cx);
+        dx = std::min(dx, 4 - dx); // the periodic distance
+        values[i] = std::tanh((1 - std::hypot(dx, pts[3 * i + 1] - 2)) / (std::sqrt(2.0) * 0.04));
+      }
+    };
+    AdaptiveMesh builder(s, MPI_COMM_WORLD);
+    auto mesh = builder.build(phi);
+    std::int64_t on_face = 0; // vertices on x = 0 (owned and ghost: an upper bound)
+    auto x = mesh->geometry().x();
+    for (std::size_t i = 0; i < x.size() / 3; ++i)
+      on_face += std::abs(x[3 * i]) < 1e-12;
+    MPI_Allreduce(MPI_IN_PLACE, &on_face, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+    const auto unmatched = unmatched_periodic_points(*mesh, s.domain);
+    std::printf("circle at x = %.2f: %lld vertex entries on x = 0 (9 unrefined), %zu unmatched\n",
+                cx, (long long)on_face, unmatched.size() / 3);
+    EXPECT_GT(on_face, 3 * 9); // refined well below the base spacing there
+    EXPECT_EQ(unmatched.size(), 0u);
+  }
 }
