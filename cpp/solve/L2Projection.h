@@ -11,7 +11,7 @@
 // On a periodic domain the projection is made under the periodic constraint: the loads
 // hold weak derivatives (eps Lap phi, the Frank term of P#), which are only right at a
 // periodic face with both sides' elements. Unconstrained, the face saw one side, as if it
-// were a wall, and a cell crossing it changed its speed by a tenth.
+// were a wall, and a polar-gel cell crossing it changed its speed by up to 15 %.
 #pragma once
 #include "compat/Dolfinx.h"
 #include "compat/Periodic.h"

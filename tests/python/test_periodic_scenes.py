@@ -60,7 +60,7 @@ def test_periodic_channel_has_the_analytic_parabola(tmp_path):
 
 def test_droplet_advected_once_around_keeps_volume_and_comes_back(tmp_path):
     """v = (1, 0) carries the droplet across x = 1 and back to its start in t = 1; the
-    mesh follows it (remeshing every step, so the periodic faces are refined differently
+    mesh follows it (remeshing every step; the band refines both periodic faces alike
     while it crosses). int phi is kept to round-off (2e-14 seen): no flux through the
     periodic faces, conservative advection, volume-corrected transfer. The position follows
     x = 0.5 + t up to a lag of the time discretisation: 0.0084 at t = 1 with dt = 1/32,
