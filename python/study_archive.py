@@ -42,6 +42,8 @@ def archive_members(study, archive):
             w.writerows([[r[i] for i in keep] for r in rows if len(r) == len(header)])
         record = json.loads((run_dir / DONE).read_text())
         record["settings"] = _portable(record.get("settings", []))
+        # A restored member archived again is its archive: not the path it came from.
+        record.pop("restored_from", None)
         (archive / f"{m.name}.json").write_text(json.dumps(record, indent=1) + "\n")
         copied.append(m.name)
     return copied

@@ -215,6 +215,10 @@ def test_archived_members_are_restored_in_a_new_checkout(tmp_path):
     assert restore_members(load_study(path), archive) == (["eps0.16", "eps0.113", "eps0.08"], [])
     proc = subprocess.run(run + [str(path)], capture_output=True, text=True, env=env, timeout=60)
     assert proc.returncode == 0 and proc.stdout.count("skipped") == 3, proc.stdout
+    # Archiving the restored members again changes nothing in the archive.
+    before = {f.name: f.read_text() for f in archive.iterdir()}
+    archive_members(load_study(path), archive)
+    assert {f.name: f.read_text() for f in archive.iterdir()} == before
     table = [ln for ln in (first / "out" / "report.md").read_text().splitlines() if "| 0.1" in ln]
     again = [ln for ln in (second / "out" / "report.md").read_text().splitlines() if "| 0.1" in ln]
     # The same errors and ROC (the wall time and peak memory columns come from the archive).
