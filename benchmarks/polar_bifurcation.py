@@ -13,7 +13,12 @@ benchmarks/results/polar-bifurcation.csv with the columns
 (v_cell: |mean cell_velocity_x| over the last settling window; settled: 1 if the member
 stopped because v_cell settled, 0 if it reached end_time still changing), a table in
 polar-bifurcation.md and the diagram polar-bifurcation.png (|v_cell| against 1/Fa, open
-markers for members that had not settled).
+markers for members that had not settled). The report's hand-written "## What it shows"
+section is kept.
+
+The finished members' time series are kept in
+benchmarks/results/polar-bifurcation-members/<study> (python/study_archive.py) and put back
+into a fresh output directory before the run, so a new machine reruns only what is missing.
 """
 import argparse
 import subprocess
@@ -24,7 +29,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
 from study_file import load_study  # noqa: E402
-from results_csv import write_csv  # noqa: E402
+from results_csv import hand_written_notes, write_csv  # noqa: E402
+from study_archive import archive_members, restore_members  # noqa: E402
+
+ARCHIVE = ROOT / "benchmarks" / "results" / "polar-bifurcation-members"
 
 COLUMNS = ["beta", "inv_fa", "epsilon", "v_cell", "settled", "t_end", "steps", "wall_time_s"]
 
@@ -134,6 +142,9 @@ def write_markdown(rows, missing, study, path):
     if missing:
         lines += ["", "Not finished:", ""] + [f"- {m}" for m in missing]
     lines += ["", "![diagram](polar-bifurcation.png)", ""]
+    notes = hand_written_notes(path)
+    if notes:
+        lines += [notes.rstrip("\n"), ""]
     path.write_text("\n".join(lines))
 
 
@@ -147,10 +158,17 @@ def main(argv=None):
     args = parser.parse_args(argv)
     rows, missing = [], []
     for path in args.studies:
+        archive = ARCHIVE / Path(path).stem
+        restored, skipped = restore_members(load_study(path), archive)
+        for name in restored:
+            print(f"{name}: restored from {archive}")
+        for name, why in skipped:
+            print(f"{name}: not restored from {archive}: {why}")
         if not args.report_only:
             subprocess.run([sys.executable, str(ROOT / "python" / "study.py"), "run", path,
                             "--jobs", str(args.jobs)], check=False)
         study = load_study(path)
+        archive_members(study, archive)
         more_rows, more_missing = member_rows(study)
         rows += more_rows
         missing += more_missing

@@ -2,8 +2,8 @@
 
 A long member (an hour or more) lives in the study's output directory, which a new machine
 or a clean checkout does not have. `archive_members` copies each finished member's
-observables (the study's observables, time, step, dofs and the wall_* cost columns, as
-written by cellphase) and its done marker to ARCHIVE/<member>.csv and ARCHIVE/<member>.json;
+observables (the study's observables and end-state quantities, time, step, dofs and the
+wall_* cost columns, as written by cellphase) and its done marker to ARCHIVE/<member>.csv and ARCHIVE/<member>.json;
 `restore_members` puts them back into run directories that have no finished result, when
 they were made with the member's present settings (the output directory aside), so that
 `study.py run` skips those members and the report reads them as if they had just run.
@@ -33,8 +33,8 @@ def archive_members(study, archive):
         with open(run_dir / "observables.csv", newline="") as f:
             rows = list(csv.reader(f))
         header = rows[0]
-        keep = [i for i, name in enumerate(header)
-                if name in KEPT or name in study.observables or name.startswith("wall_")]
+        wanted = set(KEPT) | set(study.observables) | set(study.end_state)
+        keep = [i for i, name in enumerate(header) if name in wanted or name.startswith("wall_")]
         archive.mkdir(parents=True, exist_ok=True)
         with open(archive / f"{m.name}.csv", "w", newline="") as f:
             w = csv.writer(f, lineterminator="\n")

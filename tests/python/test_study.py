@@ -196,7 +196,7 @@ def test_archived_members_are_restored_in_a_new_checkout(tmp_path):
             "set: {numerics.end_time: 0.01, numerics.mesh.remesh_every: 0}\n"
             "ladder: {epsilon: [0.16, 0.113, 0.08], rules: "
             "{resolution_times_epsilon: 0.48, dt_over_epsilon: 0.05}}\n"
-            "observables: [volume, surface]\n")
+            "observables: [volume, surface]\nreport: {end_state: [circularity]}\n")
     first, second = tmp_path / "first", tmp_path / "second"
     first.mkdir(), second.mkdir()
     env = {**os.environ, "CELLPHASE_EXE": EXE}
@@ -208,7 +208,7 @@ def test_archived_members_are_restored_in_a_new_checkout(tmp_path):
     assert archive_members(load_study(first / "study.yaml"), archive) == \
         ["eps0.16", "eps0.113", "eps0.08"]
     header = (archive / "eps0.08.csv").read_text().splitlines()[0].split(",")
-    assert {"time", "step", "dofs", "volume", "surface", "wall_solve"} <= set(header)
+    assert {"time", "step", "dofs", "volume", "surface", "circularity", "wall_solve"} <= set(header)
     assert "output.directory" not in (archive / "eps0.08.json").read_text()
 
     path = write_study(second, text)
