@@ -3,7 +3,8 @@
 A long member (an hour or more) lives in the study's output directory, which a new machine
 or a clean checkout does not have. `archive_members` copies each finished member's
 observables (the study's observables and end-state quantities, time, step, dofs and the
-wall_* cost columns, as written by cellphase) and its done marker to ARCHIVE/<member>.csv and ARCHIVE/<member>.json;
+wall_* cost columns, as written by cellphase) and its done marker to ARCHIVE/<member>.csv
+and ARCHIVE/<member>.json;
 `restore_members` puts them back into run directories that have no finished result, when
 they were made with the member's present settings (the output directory aside), so that
 `study.py run` skips those members and the report reads them as if they had just run.
