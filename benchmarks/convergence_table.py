@@ -32,7 +32,7 @@ def add_arguments(parser):
 
 def run_ladder(study_path, archive, args):
     """Put the archived members back, run the members not yet done (unless --report-only)
-    and archive the finished ones. Returns the study."""
+    and archive the finished ones. Returns the study (a ladder's or a sweep's)."""
     study = load_study(study_path)
     restored, skipped = restore_members(study, archive)
     for name in restored:

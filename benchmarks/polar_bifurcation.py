@@ -4,7 +4,7 @@ the stationary speed |v_cell| against the activity 1/Fa, one sweep per beta (ben
 studies/polar-bifurcation.yaml for beta = 0, polar-bifurcation-beta0.05.yaml). Every member
 stops once v_cell has settled (numerics.stop_when_settled), at the latest at its end_time.
 
-Usage: /usr/bin/python3 benchmarks/polar_bifurcation.py [STUDY.yaml ...] [--jobs N]
+Usage: /usr/bin/python3 benchmarks/polar_bifurcation.py [STUDY.yaml ...] [--jobs N] [--mpi N]
                                                         [--report-only]
 
 Runs the members not yet done (python/study.py run, one study after the other), then writes
@@ -21,16 +21,14 @@ benchmarks/results/polar-bifurcation-members/<study> (python/study_archive.py) a
 into a fresh output directory before the run, so a new machine reruns only what is missing.
 """
 import argparse
-import subprocess
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
-from study_file import load_study  # noqa: E402
 from results_csv import hand_written_notes, write_csv  # noqa: E402
-from study_archive import archive_members, restore_members  # noqa: E402
+from convergence_table import run_ladder  # noqa: E402  (restore, run and archive any study)
 
 ARCHIVE = ROOT / "benchmarks" / "results" / "polar-bifurcation-members"
 
@@ -154,21 +152,12 @@ def main(argv=None):
     parser.add_argument("studies", nargs="*", default=[str(studies / "polar-bifurcation.yaml"),
                                                        str(studies / "polar-bifurcation-beta0.05.yaml")])
     parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--mpi", type=int, default=1, help="MPI ranks per member")
     parser.add_argument("--report-only", action="store_true")
     args = parser.parse_args(argv)
     rows, missing = [], []
     for path in args.studies:
-        archive = ARCHIVE / Path(path).stem
-        restored, skipped = restore_members(load_study(path), archive)
-        for name in restored:
-            print(f"{name}: restored from {archive}")
-        for name, why in skipped:
-            print(f"{name}: not restored from {archive}: {why}")
-        if not args.report_only:
-            subprocess.run([sys.executable, str(ROOT / "python" / "study.py"), "run", path,
-                            "--jobs", str(args.jobs)], check=False)
-        study = load_study(path)
-        archive_members(study, archive)
+        study = run_ladder(path, ARCHIVE / Path(path).stem, args)
         more_rows, more_missing = member_rows(study)
         rows += more_rows
         missing += more_missing
