@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Bifurcation diagram of the active polar gel cell (thesis Fig. 6.8) with the study tool:
-the stationary speed |v_cell| against the activity 1/Fa, one sweep per beta (benchmarks/
-studies/polar-bifurcation.yaml for beta = 0, polar-bifurcation-beta0.05.yaml). Every member
-stops once v_cell has settled (numerics.stop_when_settled), at the latest at its end_time.
+the stationary speed |v_cell| against the activity 1/Fa, one sweep per beta and eps
+(benchmarks/studies/polar-bifurcation.yaml for beta = 0 at eps 0.42,
+polar-bifurcation-beta0.05.yaml, and the same pair at the thesis' eps 0.21,
+polar-bifurcation-eps0.21*.yaml). Every member stops once v_cell has settled
+(numerics.stop_when_settled), at the latest at its end_time.
 
 Usage: /usr/bin/python3 benchmarks/polar_bifurcation.py [STUDY.yaml ...] [--jobs N] [--mpi N]
                                                         [--report-only]
@@ -12,8 +14,8 @@ benchmarks/results/polar-bifurcation.csv with the columns
   beta,inv_fa,epsilon,v_cell,settled,t_end,steps,wall_time_s
 (v_cell: |mean cell_velocity_x| over the last settling window; settled: 1 if the member
 stopped because v_cell settled, 0 if it reached end_time still changing), a table in
-polar-bifurcation.md and the diagram polar-bifurcation.png (|v_cell| against 1/Fa, open
-markers for members that had not settled). The report's hand-written "## What it shows"
+polar-bifurcation.md and the diagram polar-bifurcation.png (|v_cell| against 1/Fa, a panel
+per eps, open markers for members that had not settled). The report's hand-written "## What it shows"
 section is kept.
 
 The finished members' time series are kept in
@@ -60,26 +62,32 @@ def member_rows(study):
                      "settled": int(float(t[-1]) < end_time - 1e-9),
                      "t_end": float(t[-1]), "steps": int(r["obs"]["step"][-1]),
                      "wall_time_s": r["wall"]})
-    return sorted(rows, key=lambda row: (row["beta"], row["inv_fa"])), missing
+    return rows, missing
 
 
 def plot(rows, path):
+    """|v_cell| against 1/Fa, one panel per eps, one line per beta."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(5.5, 4), constrained_layout=True)
-    for beta in sorted({r["beta"] for r in rows}):
-        mine = [r for r in rows if r["beta"] == beta]
-        line, = ax.plot([r["inv_fa"] for r in mine], [r["v_cell"] for r in mine], "-",
-                        label=f"beta = {beta:g}")
-        for r in mine:
-            ax.plot(r["inv_fa"], r["v_cell"], "o", color=line.get_color(),
-                    markerfacecolor=line.get_color() if r["settled"] else "white")
-    ax.set_xlabel("activity 1/Fa")
-    ax.set_ylabel("stationary |v_cell|")
-    eps = rows[0]["epsilon"]
-    ax.set_title(f"Polar gel cell, eps = {eps:g} (open: not settled by t_end)", fontsize=10)
-    ax.legend()
+    epsilons = sorted({r["epsilon"] for r in rows}, reverse=True)
+    fig, axes = plt.subplots(1, len(epsilons), figsize=(5.0 * len(epsilons), 4), sharey=True,
+                             squeeze=False, constrained_layout=True)
+    for ax, eps in zip(axes[0], epsilons):
+        for beta in sorted({r["beta"] for r in rows}):
+            mine = [r for r in rows if r["beta"] == beta and r["epsilon"] == eps]
+            if not mine:
+                continue
+            line, = ax.plot([r["inv_fa"] for r in mine], [r["v_cell"] for r in mine], "-",
+                            label=f"beta = {beta:g}")
+            for r in mine:
+                ax.plot(r["inv_fa"], r["v_cell"], "o", color=line.get_color(),
+                        markerfacecolor=line.get_color() if r["settled"] else "white")
+        ax.set_xlabel("activity 1/Fa")
+        ax.set_title(f"eps = {eps:g} (open: not settled by t_end)", fontsize=10)
+        ax.legend()
+    axes[0][0].set_ylabel("stationary |v_cell|")
+    fig.suptitle("Polar gel cell: bifurcation diagram (thesis Fig. 6.8)", fontsize=11)
     fig.savefig(path, dpi=120)
 
 
@@ -91,36 +99,40 @@ def critical_brackets(rows):
     cell starts to move: the largest 1/Fa at rest (|v_cell| < AT_REST) and the smallest above
     it that moves. For beta > 0 (no such symmetry) the speeds in order."""
     lines = []
-    for beta in sorted({r["beta"] for r in rows}):
-        mine = sorted((r for r in rows if r["beta"] == beta), key=lambda r: r["inv_fa"])
+    for eps, beta in sorted({(r["epsilon"], r["beta"]) for r in rows}, key=lambda k: (-k[0], k[1])):
+        mine = sorted((r for r in rows if r["beta"] == beta and r["epsilon"] == eps),
+                      key=lambda r: r["inv_fa"])
+        head = f"- eps = {eps:g}, beta = {beta:g}:"
         if beta != 0:
             speeds = ", ".join(f"{r['v_cell']:.3g} ({r['inv_fa']:g})" for r in mine)
-            lines.append(f"- beta = {beta:g}: |v_cell| (1/Fa) = {speeds}.")
+            lines.append(f"{head} |v_cell| (1/Fa) = {speeds}.")
             continue
         rest = [r["inv_fa"] for r in mine if r["v_cell"] < AT_REST]
         moving = [r["inv_fa"] for r in mine if r["v_cell"] >= AT_REST
                   and (not rest or r["inv_fa"] > max(rest))]
         if rest and moving:
-            lines.append(f"- beta = {beta:g}: at rest (|v_cell| < {AT_REST:g}) up to 1/Fa = "
+            lines.append(f"{head} at rest (|v_cell| < {AT_REST:g}) up to 1/Fa = "
                          f"{max(rest):g}, moving from {min(moving):g}: the critical activity "
                          f"lies between them.")
         else:
-            lines.append(f"- beta = {beta:g}: no member at rest below a moving one (|v_cell| < "
+            lines.append(f"{head} no member at rest below a moving one (|v_cell| < "
                          f"{AT_REST:g} at 1/Fa = {', '.join(f'{x:g}' for x in rest) or 'none'}):"
                          f" no sharp onset in this range.")
     lines.append("- The thesis finds 1/Fa_crit ~ 0.75 at eps = 0.21 for beta = 0, growing with "
-                 "eps (Fig. 6.10), and a transition smoothed out for beta > 0 (Fig. 6.8).")
+                 "eps (Fig. 6.10), and a transition smoothed out for beta > 0 (Fig. 6.8); "
+                 "benchmarks/results/polar-critical.md has 1/Fa_crit by bisection.")
     return lines
 
 
 def write_markdown(rows, missing, study, path):
     """The table; the settling rule is that of `study` (the same in every sweep)."""
     over, end_time = settle_settings(study)
+    epsilons = ", ".join(f"{e:g}" for e in sorted({r["epsilon"] for r in rows}, reverse=True))
     lines = [
         "# Bifurcation diagram of the active polar gel cell (thesis Fig. 6.8)",
         "",
         f"Written by `benchmarks/polar_bifurcation.py` from `benchmarks/studies/polar-bifurcation*.yaml`"
-        f" (eps = {rows[0]['epsilon']:g}; each member stops once v_cell varies by at most "
+        f" (eps = {epsilons}; each member stops once v_cell varies by at most "
         f"{study.common['numerics.stop_when_settled.relative']} of itself or "
         f"{study.common['numerics.stop_when_settled.absolute']} over {over:g} time units, at "
         f"the latest at t = {end_time:g}). v_cell is |mean cell_velocity_x| over the last "
@@ -129,11 +141,11 @@ def write_markdown(rows, missing, study, path):
         f"\"at rest\" (still decaying); a member that reaches t_end unsettled is listed with "
         f"its speed then.",
         "",
-        "| beta | 1/Fa | v_cell | settled | t_end | steps | wall s (1 core) |",
-        "|---|---|---|---|---|---|---|",
+        "| eps | beta | 1/Fa | v_cell | settled | t_end | steps | wall s (1 core) |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
-        lines.append(f"| {r['beta']:g} | {r['inv_fa']:g} | {r['v_cell']:.4g} | "
+        lines.append(f"| {r['epsilon']:g} | {r['beta']:g} | {r['inv_fa']:g} | {r['v_cell']:.4g} | "
                      f"{'yes' if r['settled'] else 'no'} | {r['t_end']:g} | {r['steps']} | "
                      f"{r['wall_time_s']:.0f} |")
     lines += [""] + critical_brackets(rows)
@@ -149,8 +161,10 @@ def write_markdown(rows, missing, study, path):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     studies = ROOT / "benchmarks" / "studies"
-    parser.add_argument("studies", nargs="*", default=[str(studies / "polar-bifurcation.yaml"),
-                                                       str(studies / "polar-bifurcation-beta0.05.yaml")])
+    parser.add_argument("studies", nargs="*", default=[
+        str(studies / name) for name in (
+            "polar-bifurcation.yaml", "polar-bifurcation-beta0.05.yaml",
+            "polar-bifurcation-eps0.21.yaml", "polar-bifurcation-eps0.21-beta0.05.yaml")])
     parser.add_argument("--jobs", type=int, default=1)
     parser.add_argument("--mpi", type=int, default=1, help="MPI ranks per member")
     parser.add_argument("--report-only", action="store_true")
@@ -163,12 +177,13 @@ def main(argv=None):
         missing += more_missing
     if not rows:
         sys.exit("no member finished (run without --report-only)")
+    rows.sort(key=lambda row: (-row["epsilon"], row["beta"], row["inv_fa"]))
     out = ROOT / "benchmarks" / "results"
     write_csv(out / "polar-bifurcation.csv", COLUMNS, rows)
     plot(rows, out / "polar-bifurcation.png")
     write_markdown(rows, missing, study, out / "polar-bifurcation.md")
     for r in rows:
-        print(f"beta {r['beta']:g}  1/Fa {r['inv_fa']:<5g} v_cell {r['v_cell']:.4g}  "
+        print(f"eps {r['epsilon']:g}  beta {r['beta']:g}  1/Fa {r['inv_fa']:<5g} v_cell {r['v_cell']:.4g}  "
               f"{'settled' if r['settled'] else 'NOT settled'} at t = {r['t_end']:g}")
     for m in missing:
         print("not finished:", m)
