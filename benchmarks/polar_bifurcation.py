@@ -52,7 +52,8 @@ def member_rows(study):
         beta = float(r["params"]["polar_gel.beta"])
         inv_fa = float(r["params"]["polar_gel.activity"])
         if r["status"] != "ok":
-            missing.append(f"beta = {beta:g}, 1/Fa = {inv_fa:g}: {r['status']}")
+            missing.append(f"eps = {float(study.common['numerics.epsilon']):g}, beta = {beta:g}, "
+                           f"1/Fa = {inv_fa:g}: {r['status']}")
             continue
         t, v = r["obs"]["time"], r["obs"]["cell_velocity_x"]
         window = [abs(x) for s, x in zip(t, v) if s >= t[-1] - over - 1e-9]
@@ -94,6 +95,10 @@ def plot(rows, path):
 AT_REST = 0.01  # |v_cell| below this counts as at rest (moving members here: 0.1 and more)
 
 
+def listed(values):
+    return ", ".join(f"{x:g}" for x in values) or "none"
+
+
 def critical_brackets(rows):
     """For beta = 0 (a pitchfork: P -> -P is a symmetry), the activities between which the
     cell starts to move: the largest 1/Fa at rest (|v_cell| < AT_REST) and the smallest above
@@ -115,9 +120,9 @@ def critical_brackets(rows):
                          f"{max(rest):g}, moving from {min(moving):g}: the critical activity "
                          f"lies between them.")
         else:
-            lines.append(f"{head} no member at rest below a moving one (|v_cell| < "
-                         f"{AT_REST:g} at 1/Fa = {', '.join(f'{x:g}' for x in rest) or 'none'}):"
-                         f" no sharp onset in this range.")
+            lines.append(f"{head} no onset among the finished members: at rest (|v_cell| < "
+                         f"{AT_REST:g}) at 1/Fa = {listed(rest)}, moving at "
+                         f"{listed(r['inv_fa'] for r in mine if r['v_cell'] >= AT_REST)}.")
     lines.append("- The thesis finds 1/Fa_crit ~ 0.75 at eps = 0.21 for beta = 0, growing with "
                  "eps (Fig. 6.10), and a transition smoothed out for beta > 0 (Fig. 6.8); "
                  "benchmarks/results/polar-critical.md has 1/Fa_crit by bisection.")
