@@ -23,6 +23,7 @@ benchmarks/results/polar-bifurcation-members/<study> (python/study_archive.py) a
 into a fresh output directory before the run, so a new machine reruns only what is missing.
 """
 import argparse
+import csv
 import sys
 from pathlib import Path
 
@@ -66,15 +67,29 @@ def member_rows(study):
     return rows, missing
 
 
+def critical_activities():
+    """1/Fa_crit by eps for beta = 0 from polar_critical.py's table, if it is there."""
+    path = ROOT / "benchmarks" / "results" / "polar-critical.csv"
+    if not path.is_file():
+        return {}
+    with path.open() as f:
+        return {float(r["epsilon"]): float(r["inv_fa_crit"]) for r in csv.DictReader(f)
+                if float(r["beta"]) == 0}
+
+
 def plot(rows, path):
     """|v_cell| against 1/Fa, one panel per eps, one line per beta."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     epsilons = sorted({r["epsilon"] for r in rows}, reverse=True)
-    fig, axes = plt.subplots(1, len(epsilons), figsize=(5.0 * len(epsilons), 4), sharey=True,
-                             squeeze=False, constrained_layout=True)
+    fig, axes = plt.subplots(1, len(epsilons), figsize=(5.0 * len(epsilons), 4), sharex=True,
+                             sharey=True, squeeze=False, constrained_layout=True)
+    critical = critical_activities()
     for ax, eps in zip(axes[0], epsilons):
+        if eps in critical:
+            ax.axvline(critical[eps], color="0.6", ls="--", lw=1,
+                       label=f"1/Fa_crit = {critical[eps]:.3g} (beta = 0, bisection)")
         for beta in sorted({r["beta"] for r in rows}):
             mine = [r for r in rows if r["beta"] == beta and r["epsilon"] == eps]
             if not mine:
@@ -86,7 +101,7 @@ def plot(rows, path):
                         markerfacecolor=line.get_color() if r["settled"] else "white")
         ax.set_xlabel("activity 1/Fa")
         ax.set_title(f"eps = {eps:g} (open: not settled by t_end)", fontsize=10)
-        ax.legend()
+        ax.legend(fontsize=8)
     axes[0][0].set_ylabel("stationary |v_cell|")
     fig.suptitle("Polar gel cell: bifurcation diagram (thesis Fig. 6.8)", fontsize=11)
     fig.savefig(path, dpi=120)
