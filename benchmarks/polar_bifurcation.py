@@ -15,8 +15,8 @@ benchmarks/results/polar-bifurcation.csv with the columns
 (v_cell: |mean cell_velocity_x| over the last settling window; settled: 1 if the member
 stopped because v_cell settled, 0 if it reached end_time still changing), a table in
 polar-bifurcation.md and the diagram polar-bifurcation.png (|v_cell| against 1/Fa, a panel
-per eps, open markers for members that had not settled). The report's hand-written "## What it shows"
-section is kept.
+per eps with 1/Fa_crit of polar-critical.csv, open markers for members that had not
+settled). The report's hand-written "## What it shows" section is kept.
 
 The finished members' time series are kept in
 benchmarks/results/polar-bifurcation-members/<study> (python/study_archive.py) and put back
@@ -151,8 +151,9 @@ def write_markdown(rows, missing, study, path):
     lines = [
         "# Bifurcation diagram of the active polar gel cell (thesis Fig. 6.8)",
         "",
-        f"Written by `benchmarks/polar_bifurcation.py` from `benchmarks/studies/polar-bifurcation*.yaml`"
-        f" (eps = {epsilons}; each member stops once v_cell varies by at most "
+        "Written by `benchmarks/polar_bifurcation.py` from "
+        f"`benchmarks/studies/polar-bifurcation*.yaml` (eps = {epsilons}; each member stops "
+        "once v_cell varies by at most "
         f"{study.common['numerics.stop_when_settled.relative']} of itself or "
         f"{study.common['numerics.stop_when_settled.absolute']} over {over:g} time units, at "
         f"the latest at t = {end_time:g}). v_cell is |mean cell_velocity_x| over the last "
@@ -203,7 +204,8 @@ def main(argv=None):
     plot(rows, out / "polar-bifurcation.png")
     write_markdown(rows, missing, study, out / "polar-bifurcation.md")
     for r in rows:
-        print(f"eps {r['epsilon']:g}  beta {r['beta']:g}  1/Fa {r['inv_fa']:<5g} v_cell {r['v_cell']:.4g}  "
+        print(f"eps {r['epsilon']:g}  beta {r['beta']:g}  1/Fa {r['inv_fa']:<5g} "
+              f"v_cell {r['v_cell']:.4g}  "
               f"{'settled' if r['settled'] else 'NOT settled'} at t = {r['t_end']:g}")
     for m in missing:
         print("not finished:", m)
