@@ -8,18 +8,22 @@ ln |v_cell| linearly over t in [20, 50]: after the start-up transient (t < 20) a
 saturation of a growing mode, the slope is the growth rate of the splay mode. A positive rate
 classes the member as moving, a negative one as at rest, so a member needs 50 time units
 instead of the up to 150 a member of the diagram needs to settle near the onset. The bracket
-is halved until it is at most 2 x TOL wide; its midpoint is 1/Fa_crit +- TOL. The zero of the
-growth rate interpolated linearly between the last bracket's ends is reported beside it.
+is halved (with --jobs N split into N + 1 parts) until it is at most 2 x TOL wide; its
+midpoint is 1/Fa_crit +- TOL. The zero of the growth rate interpolated linearly between the
+last bracket's ends is reported beside it.
 
 The time step follows the mesh (thesis section 6.4.3: the same relation between mesh size and
 time step for every eps): dt = 0.1 eps / 0.42.
 
 Usage: /usr/bin/python3 benchmarks/polar_critical.py [--epsilons 0.42 0.3] [--bracket LO HI]
-                                                     [--tolerance 0.02] [--set KEY=VALUE ...]
+                                                     [--tolerance 0.02] [--jobs N]
+                                                     [--set KEY=VALUE ...]
                                                      [--name NAME] [--report-only]
 
-Epsilons run one after the other; to use both cores, start one process per eps and write the
-joint tables afterwards with --report-only --epsilons 0.42 0.3 (it reuses the members). The
+Epsilons run one after the other; --jobs 2 runs two members of one eps side by side (the
+bracket's ends, then two points a round that leave a third of the bracket), or start one
+process per eps and write the joint tables afterwards with --report-only --epsilons 0.42 0.3
+(it reuses the members). The
 committed rows of the epsilons not run are kept in the tables.
 --set changes the scene of every member (e.g. --set "flow.viscosity={inside: 2, outside: 1}"
 for the viscosity study of Fig. 6.12); such members get their own directories, and --name
@@ -37,6 +41,7 @@ import os
 import subprocess
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from results_csv import write_csv  # noqa: E402
 
@@ -125,13 +130,16 @@ def member(eps, inv_fa, extra):
     return row
 
 
-def bisect(eps, lo, hi, tol, extra):
+def bisect(eps, lo, hi, tol, extra, jobs=1):
     """Bisection on the sign of the growth rate, from the bracket [lo, hi] (moved until it
-    holds a sign change); the members are kept on disk (summarise reads them)."""
-    def rate(x):
-        return member(eps, x, extra)["growth_rate"]
+    holds a sign change); the members are kept on disk (summarise reads them). With jobs > 1
+    the bracket's two ends run side by side, and each round runs `jobs` members that split the
+    bracket into jobs + 1 equal parts (two members a round: a third of the bracket left)."""
+    def rates(points):
+        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+            return list(pool.map(lambda x: member(eps, x, extra)["growth_rate"], points))
 
-    r_lo, r_hi = rate(lo), rate(hi)
+    r_lo, r_hi = rates([lo, hi])
     widen = 0
     while not (r_lo < 0 < r_hi):  # move the bracket until it holds the onset
         widen += 1
@@ -140,16 +148,20 @@ def bisect(eps, lo, hi, tol, extra):
         width = hi - lo
         if r_lo >= 0:
             hi, lo = lo, max(lo - width, 0.05)
-            r_hi, r_lo = r_lo, rate(lo)
+            r_hi, r_lo = r_lo, rates([lo])[0]
         else:
             lo, hi = hi, hi + width
-            r_lo, r_hi = r_hi, rate(hi)
+            r_lo, r_hi = r_hi, rates([hi])[0]
     while hi - lo > 2 * tol + 1e-12:
-        mid = 0.5 * (lo + hi)
-        if rate(mid) > 0:
-            hi = mid
-        else:
-            lo = mid
+        n = max(1, jobs)
+        points = [lo + (hi - lo) * k / (n + 1) for k in range(1, n + 1)]
+        # the rate grows with 1/Fa: the new bracket is the last decaying point and the
+        # growing one next to it
+        for x, r in zip(points, rates(points)):
+            if r > 0:
+                hi = x
+                break
+            lo = x
 
 
 def summarise(eps, extra):
@@ -257,6 +269,8 @@ def main(argv=None):
                         metavar=("LO", "HI"), help="first bracket of 1/Fa (moved if it does "
                         "not hold the onset)")
     parser.add_argument("--tolerance", type=float, default=0.02)
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="members run side by side, one core each (default 1)")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="a scene setting of every member (repeatable)")
     parser.add_argument("--name", default="polar-critical",
@@ -277,7 +291,7 @@ def main(argv=None):
         if not args.report_only:
             print(f"eps {eps:g}: bisection in [{args.bracket[0]:g}, {args.bracket[1]:g}]",
                   flush=True)
-            bisect(eps, *args.bracket, args.tolerance, extra)
+            bisect(eps, *args.bracket, args.tolerance, extra, args.jobs)
         result, mine = summarise(eps, extra)
         members += mine
         if result is None:
