@@ -31,8 +31,9 @@ gives the results their own file names.
 
 Writes benchmarks/results/polar-critical.csv (beta,epsilon,inv_fa_crit,bracket_lo,bracket_hi,
 inv_fa_zero_rate,members,wall_time_s), polar-critical-members.csv (every member's growth
-rate), polar-critical.md and polar-critical.png (growth rate against 1/Fa per eps, and
-1/Fa_crit against eps). Members are kept in output/benchmarks/polar-critical/ and reused.
+rate), polar-critical.md (its hand-written "## What it shows" section kept) and
+polar-critical.png (growth rate against 1/Fa per eps, and 1/Fa_crit against eps). Members
+are kept in output/benchmarks/polar-critical/ and reused.
 """
 import argparse
 import csv
@@ -43,7 +44,7 @@ import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from results_csv import write_csv  # noqa: E402
+from results_csv import hand_written_notes, write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 # $CELLPHASE_EXE runs a copy, so that a rebuild cannot replace the binary under a running study
@@ -247,7 +248,11 @@ def write_results(results, members, tol, name, extra):
               "the splay mode. The rates agree with the diagram's long runs: there, at "
               "eps 0.42, |v_cell| decays at 1/Fa = 1 (by the factor e^-0.016 per time unit "
               "from t = 20 to 150) and grows at 1.5.", "", f"![growth rates and onset]({name}.png)", ""]
-    (RESULTS / f"{name}.md").write_text("\n".join(lines))
+    report = RESULTS / f"{name}.md"
+    notes = hand_written_notes(report)  # the "## What it shows" section is kept
+    if notes:
+        lines += [notes.rstrip("\n"), ""]
+    report.write_text("\n".join(lines))
     plot(results, members, RESULTS / f"{name}.png")
 
 
