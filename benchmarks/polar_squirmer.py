@@ -7,7 +7,12 @@ Runs benchmarks/studies/polar-squirmer.yaml with the study tool (beta = 0.05, 1/
 squirmer profile (6.18), n1 (sin a + m sin 2a), and the velocity outside r = 5 to the far
 field (6.19) (v_cell, Stokeslet A_st, stresslet A_str, source dipole A_sd).
 
-Usage: /usr/bin/python3 benchmarks/polar_squirmer.py [--study STUDY.yaml] [--report-only]
+Usage: /usr/bin/python3 benchmarks/polar_squirmer.py [--study STUDY.yaml] [--jobs N]
+                                                     [--report-only]
+
+The default study runs at eps 0.42; benchmarks/studies/polar-squirmer-eps0.21.yaml runs the
+same members at the thesis' eps 0.21. The result files are named after the study
+(polar-squirmer*.{csv,md,png}; below for the default study).
 
 Writes benchmarks/results/polar-squirmer.csv with the columns
   inv_fa,v_cell,n1,m,A_st,A_str,A_sd,v_cell_fit,t_end,settled
@@ -15,6 +20,7 @@ Writes benchmarks/results/polar-squirmer.csv with the columns
 uniform part), polar-squirmer.md (beside the thesis' Table 6.3 and its fitted n1, m),
 polar-squirmer.png (the profiles and their fits, as Fig. 6.14) and polar-squirmer-shapes.png
 (the stationary shapes: |P| with its direction, and the co-moving velocity, as Fig. 6.15).
+The report's hand-written "## What it shows" section is kept.
 """
 import argparse
 import subprocess
@@ -28,7 +34,7 @@ sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
 import squirmer_fit as sq  # noqa: E402
 from study_file import load_study  # noqa: E402
-from results_csv import write_csv  # noqa: E402
+from results_csv import hand_written_notes, write_csv  # noqa: E402
 
 STUDY = ROOT / "benchmarks" / "studies" / "polar-squirmer.yaml"
 RESULTS = ROOT / "benchmarks" / "results"
@@ -102,11 +108,12 @@ def plot_shapes(rows, run_dirs, path):
     fig.savefig(path, dpi=110)
 
 
-def write_markdown(rows, study, path):
+def write_markdown(rows, study, study_file, path):
     c = study.common
+    name = path.stem
     lines = ["# The polar gel cell as a squirmer (thesis Table 6.3, Fig. 6.14)", "",
              "Written by `benchmarks/polar_squirmer.py` from "
-             "`benchmarks/studies/polar-squirmer.yaml`: beta = 0.05, channel [0, 160] x "
+             f"`benchmarks/studies/{study_file.name}`: beta = 0.05, channel [0, 160] x "
              f"[0, 40], eps = {c['numerics.epsilon']} (the thesis: 0.21), each member run "
              "until v_cell varied by at most "
              f"{float(c['numerics.stop_when_settled.relative']) * 100:g} % over "
@@ -139,10 +146,13 @@ def write_markdown(rows, study, path):
               "- The thesis finds pullers for 1/Fa <= 0.5 (m > 0, A_str < 0), near-neutral "
               "swimmers at 0.75 and pushers for 1/Fa >= 1 (m < 0, A_str > 0), with the far "
               "field dominated by the Stokeslet.", "",
-              "![profiles and fits](polar-squirmer.png)", "",
+              f"![profiles and fits]({name}.png)", "",
               "Stationary shapes (Fig. 6.15), moving to the right: |P| and the direction of "
               "P, and the velocity in the co-moving frame.", "",
-              "![stationary shapes](polar-squirmer-shapes.png)", ""]
+              f"![stationary shapes]({name}-shapes.png)", ""]
+    notes = hand_written_notes(path)
+    if notes:
+        lines += [notes.rstrip("\n"), ""]
     path.write_text("\n".join(lines))
 
 
@@ -176,14 +186,15 @@ def main(argv=None):
     if not rows:
         sys.exit("no member finished (run without --report-only)")
     rows.sort(key=lambda r: r["inv_fa"])
-    write_csv(RESULTS / "polar-squirmer.csv", COLUMNS, rows)
-    plot(rows, profiles, RESULTS / "polar-squirmer.png")
-    plot_shapes(rows, run_dirs, RESULTS / "polar-squirmer-shapes.png")
-    write_markdown(rows, study, RESULTS / "polar-squirmer.md")
+    name = Path(args.study).stem  # polar-squirmer, polar-squirmer-eps0.21
+    write_csv(RESULTS / f"{name}.csv", COLUMNS, rows)
+    plot(rows, profiles, RESULTS / f"{name}.png")
+    plot_shapes(rows, run_dirs, RESULTS / f"{name}-shapes.png")
+    write_markdown(rows, study, Path(args.study), RESULTS / f"{name}.md")
     for r in rows:
         print(f"1/Fa {r['inv_fa']:<5g} v_cell {r['v_cell']:.4f}  n1 {r['n1']:.3f}  m {r['m']:+.3f}"
               f"  A_st {r['A_st']:.4f}  A_str {r['A_str']:+.4f}  A_sd {r['A_sd']:.3f}")
-    print(f"written: {RESULTS / 'polar-squirmer.csv'}, .md, .png")
+    print(f"written: {RESULTS / name}.csv, .md, .png")
 
 
 if __name__ == "__main__":
