@@ -23,8 +23,7 @@ Usage: /usr/bin/python3 benchmarks/polar_critical.py [--epsilons 0.42 0.3] [--br
 Epsilons run one after the other; --jobs 2 runs two members of one eps side by side (the
 bracket's ends, then two points a round that leave a third of the bracket), or start one
 process per eps and write the joint tables afterwards with --report-only --epsilons 0.42 0.3
-(it reuses the members). The
-committed rows of the epsilons not run are kept in the tables.
+(it reuses the members). The committed rows of the epsilons not run are kept in the tables.
 --set changes the scene of every member (e.g. --set "flow.viscosity={inside: 2, outside: 1}"
 for the viscosity study of Fig. 6.12); such members get their own directories, and --name
 gives the results their own file names.
