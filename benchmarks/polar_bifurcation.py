@@ -29,7 +29,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
-from results_csv import hand_written_notes, write_csv  # noqa: E402
+from results_csv import write_csv, write_report  # noqa: E402
 from convergence_table import run_ladder  # noqa: E402  (restore, run and archive any study)
 
 ARCHIVE = ROOT / "benchmarks" / "results" / "polar-bifurcation-members"
@@ -172,10 +172,7 @@ def write_markdown(rows, missing, study, path):
     if missing:
         lines += ["", "Not finished:", ""] + [f"- {m}" for m in missing]
     lines += ["", "![diagram](polar-bifurcation.png)", ""]
-    notes = hand_written_notes(path)
-    if notes:
-        lines += [notes.rstrip("\n"), ""]
-    path.write_text("\n".join(lines))
+    write_report(path, lines)
 
 
 def main(argv=None):

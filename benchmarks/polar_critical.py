@@ -43,7 +43,7 @@ import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from results_csv import hand_written_notes, write_csv  # noqa: E402
+from results_csv import write_csv, write_report  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 # $CELLPHASE_EXE runs a copy, so that a rebuild cannot replace the binary under a running study
@@ -247,11 +247,7 @@ def write_results(results, members, tol, name, extra):
               "the splay mode. The rates agree with the diagram's long runs: there, at "
               "eps 0.42, |v_cell| decays at 1/Fa = 1 (by the factor e^-0.016 per time unit "
               "from t = 20 to 150) and grows at 1.5.", "", f"![growth rates and onset]({name}.png)", ""]
-    report = RESULTS / f"{name}.md"
-    notes = hand_written_notes(report)  # the "## What it shows" section is kept
-    if notes:
-        lines += [notes.rstrip("\n"), ""]
-    report.write_text("\n".join(lines))
+    write_report(RESULTS / f"{name}.md", lines)  # keeps the "## What it shows" section
     plot(results, members, RESULTS / f"{name}.png")
 
 

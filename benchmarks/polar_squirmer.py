@@ -34,7 +34,7 @@ sys.path.insert(0, str(ROOT / "python"))
 import study as study_runner  # noqa: E402  (python/study.py)
 import squirmer_fit as sq  # noqa: E402
 from study_file import load_study  # noqa: E402
-from results_csv import hand_written_notes, write_csv  # noqa: E402
+from results_csv import write_csv, write_report  # noqa: E402
 
 STUDY = ROOT / "benchmarks" / "studies" / "polar-squirmer.yaml"
 RESULTS = ROOT / "benchmarks" / "results"
@@ -150,10 +150,7 @@ def write_markdown(rows, study, study_file, path):
               "Stationary shapes (Fig. 6.15), moving to the right: |P| and the direction of "
               "P, and the velocity in the co-moving frame.", "",
               f"![stationary shapes]({name}-shapes.png)", ""]
-    notes = hand_written_notes(path)
-    if notes:
-        lines += [notes.rstrip("\n"), ""]
-    path.write_text("\n".join(lines))
+    write_report(path, lines)
 
 
 def main(argv=None):

@@ -22,3 +22,12 @@ def hand_written_notes(report):
         return ""
     text = report.read_text()
     return text[text.index(NOTES):]
+
+
+def write_report(path, lines):
+    """Write a report's generated lines, followed by its hand-written "## What it shows"
+    section if the report already had one."""
+    notes = hand_written_notes(path)
+    if notes:
+        lines = lines + [notes.rstrip("\n"), ""]
+    path.write_text("\n".join(lines))
