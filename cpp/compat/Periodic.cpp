@@ -41,20 +41,36 @@ void scalar_subspaces(std::shared_ptr<const Space> V,
 PeriodicConstraint::PeriodicConstraint(std::shared_ptr<const Space> V,
                                        const std::array<double, 3>& lower,
                                        const std::array<double, 3>& upper,
-                                       const std::vector<int>& axes, const BCs& bcs)
+                                       const std::vector<int>& periodic_axes,
+                                       const BCs& bcs)
     : V_(V)
 {
-  if (axes.empty())
+  if (periodic_axes.empty())
     return;
   const int gdim = V->mesh()->geometry().dim();
-  for (int a : axes)
+  for (int a : periodic_axes)
     if (a < 0 || a >= gdim)
       throw std::runtime_error("periodic axis " + std::to_string(a)
                                + " outside the mesh dimension");
 
   double tol = 0;
-  for (int a : axes)
+  for (int a : periodic_axes)
     tol = std::max(tol, 1e-8 * (upper[a] - lower[a]));
+  // A mesh that reaches neither side of a periodic axis (a cell's own mesh inside the
+  // domain) has no dofs to tie across it: the axis constrains nothing there.
+  const auto [mesh_lower, mesh_upper] = compat::bounding_box(*V->mesh());
+  std::vector<int> axes;
+  for (int a : periodic_axes)
+  {
+    const bool at_lower = mesh_lower[a] < lower[a] + tol, at_upper = mesh_upper[a] > upper[a] - tol;
+    if (at_lower && at_upper)
+      axes.push_back(a);
+    else if (at_lower || at_upper)
+      throw std::runtime_error("a mesh reaches one periodic side of axis " + std::to_string(a)
+                               + " only (a patch would have to wrap around it)");
+  }
+  if (axes.empty())
+    return;
   auto on_max = [=](const auto& x, std::size_t i)
   {
     return std::any_of(axes.begin(), axes.end(),

@@ -25,7 +25,8 @@ public:
   /// x, y, z) of the box [lower, upper]. Dofs of `bcs` stay Dirichlet dofs, not slaves;
   /// pass the same bcs to the assembly. Their current values are also used where the
   /// faces do not match next to a Dirichlet face (a constant part of a slave). The faces
-  /// may be refined differently. Collective.
+  /// may be refined differently. A periodic axis whose sides the mesh does not reach (a
+  /// cell's own mesh inside the domain) constrains nothing. Collective.
   PeriodicConstraint(std::shared_ptr<const Space> V, const std::array<double, 3>& lower,
                      const std::array<double, 3>& upper, const std::vector<int>& axes,
                      const BCs& bcs = {});

@@ -1,5 +1,8 @@
 #include "mesh/OwnMesh.h"
+#include "scene/SceneLoader.h"
+#include <cstdio>
 #include <limits>
+#include <string>
 
 namespace cellphase
 {
@@ -16,6 +19,19 @@ std::shared_ptr<Mesh> OwnMesh::build(const PointEvaluator& phi, const compat::Bo
     box_[a] = band[a] - margin_;
     box_[3 + a] = band[3 + a] + margin_;
   }
+  const auto& d = scene_.domain;
+  for (int a : d.periodic) // a patch is not wrapped around a periodic side
+    if (box_[a] <= d.lower[a] || box_[3 + a] >= d.upper[a])
+    {
+      char text[400];
+      std::snprintf(text, sizeof text,
+                    "numerics.mesh.cell_meshes: own: a cell's own mesh (its band phi > -0.9 "
+                    "grown by numerics.mesh.own_margin = %g) reaches the periodic side %c = %g "
+                    "of the domain: own meshes do not wrap around periodic sides; move the "
+                    "cell, lengthen the domain or use numerics.mesh.cell_meshes: shared",
+                    margin_, char('x' + a), box_[a] <= d.lower[a] ? d.lower[a] : d.upper[a]);
+      throw scene::SceneError(text);
+    }
   refined_ = std::make_unique<AdaptiveMesh>(scene_, compat::create_patch(*base_, box_));
   return refined_->build(phi);
 }

@@ -264,6 +264,8 @@ void PhaseFieldModule::refresh_interaction()
 void PhaseFieldModule::set_orientation(std::shared_ptr<const Function> P,
                                        const ConstantMap& parameters)
 {
+  if (P->function_space()->mesh() != W_->mesh()) // the polar gel solves on phi's mesh
+    throw std::invalid_argument("phase field: the orientation field must live on the current mesh");
   add_source(forms_.load_polar, "orientation-field", {{"P_polar", P}}, parameters);
 }
 

@@ -367,6 +367,16 @@ std::string PhaseFieldSubProblem::patch_problem() const
                   "-0.9, numerics.mesh.own_margin = %g): remesh more often "
                   "(numerics.mesh.remesh_every) or widen the margin",
                   groups_ > 1 ? (" " + group_.name).c_str() : "", gap, margin);
+  // The next remesh cuts the band's box grown by the margin, which may not reach a
+  // periodic side (OwnMesh::build).
+  const auto& d = scene_.domain;
+  for (int a : d.periodic)
+    if (band[a] - margin <= d.lower[a] || band[3 + a] + margin >= d.upper[a])
+      return format("cell%s came within numerics.mesh.own_margin = %g of the periodic side "
+                    "%c = %g: own meshes do not wrap around periodic sides; lengthen the "
+                    "domain or use numerics.mesh.cell_meshes: shared",
+                    groups_ > 1 ? (" " + group_.name).c_str() : "", margin, char('x' + a),
+                    band[a] - margin <= d.lower[a] ? d.lower[a] : d.upper[a]);
   return "";
 }
 

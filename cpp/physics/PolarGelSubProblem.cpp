@@ -1,4 +1,5 @@
 #include "physics/PolarGelSubProblem.h"
+#include "mesh/FieldTransfer.h"
 #include "physics/FlowVelocity.h"
 #include "scene/Plan.h"
 #include "solve/Assemble.h"
@@ -22,6 +23,8 @@ PolarGelSubProblem::PolarGelSubProblem(scene::PlanStep step, const scene::Scene&
     : SubProblem(std::move(step)), scene_(scene), gel_(*scene.polar_gel), comm_(comm)
 {
   phi_name_ = reads().front();
+  if (scene::own_meshes(scene))
+    mesh_key_ = scene::cell_groups(scene).front().prefix;
   forms_ = polar_gel_forms(scene.domain.dim);
   mass_forms_ = interface_force_forms(scene.domain.dim);
   dt_ = constant(1.0);
@@ -39,9 +42,10 @@ PolarGelSubProblem::PolarGelSubProblem(scene::PlanStep step, const scene::Scene&
 
 void PolarGelSubProblem::declare(FieldRegistry& fields)
 {
-  fields.declare({"polar.P", "P", name(), FieldSpace::vector_p2, Transfer::interpolate, true});
+  fields.declare({"polar.P", "P", name(), FieldSpace::vector_p2, Transfer::interpolate, true,
+                  mesh_key_});
   fields.declare({"polar.P_sharp", "P_sharp", name(), FieldSpace::vector_p2,
-                  Transfer::interpolate, true});
+                  Transfer::interpolate, true, mesh_key_});
   if (scene_.flow)
     fields.declare({"polar.force", "polar_force", name(), FieldSpace::other, Transfer::recompute,
                     false});
@@ -129,7 +133,7 @@ void PolarGelSubProblem::attach(FieldRegistry& fields)
 {
   phi_ = fields.get(phi_name_);
   auto mesh = phi_->function_space()->mesh();
-  auto V = fields.space("", FieldSpace::vector_p2);
+  auto V = fields.space(mesh_key_, FieldSpace::vector_p2);
   bool fresh_P = false, fresh_sharp = false;
   P_ = fields.take("polar.P", V, fresh_P); // moved from the last mesh or restored
   P_sharp_ = fields.take("polar.P_sharp", V, fresh_sharp);
@@ -167,7 +171,19 @@ void PolarGelSubProblem::project_sharp()
 void PolarGelSubProblem::connect(FieldRegistry& fields)
 {
   v_ = flow_velocity_or_zero(fields);
-  // P^n and P#^n are the registry's fields themselves: the step assembles from them before
+  velocity_in_.reset();
+  force_out_.reset();
+  auto mesh = P_->function_space()->mesh();
+  if (!mesh_key_.empty())
+  {
+    // The own mesh: v^{n+1} resampled onto it before each step (zero without a flow).
+    velocity_ = std::make_shared<Function>(create_vector_p2_space(mesh, scene_.domain.dim));
+    velocity_->x()->set(0.0);
+    if (fields.find("flow.v"))
+      velocity_in_ = std::make_unique<compat::Resampler>(fields.get("flow.v"), velocity_,
+                                                         compat::local_cells(*mesh), 0.0);
+    v_ = velocity_;
+  }  // P^n and P#^n are the registry's fields themselves: the step assembles from them before
   // it overwrites P.
   auto V = std::const_pointer_cast<Space>(P_->function_space());
   const CoefficientMap coeffs{{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}, {"v", v_}};
@@ -182,10 +198,19 @@ void PolarGelSubProblem::connect(FieldRegistry& fields)
     auto Vf = std::const_pointer_cast<Space>(fields.get("flow.v")->function_space());
     force_ = std::make_shared<Function>(Vf);
     force_->name = "polar_force";
-    force_L_ = compat::create_form(*forms_.force_L, {Vf},
+    auto Vp = Vf; // where the force is projected: P's mesh
+    if (!mesh_key_.empty())
+    {
+      Vp = create_vector_p2_space(mesh, scene_.domain.dim);
+      force_on_patch_ = std::make_shared<Function>(Vp);
+      force_->x()->set(0.0);
+      force_out_ = std::make_unique<compat::Resampler>(
+          force_on_patch_, force_, compat::cells_inside(*Vf->mesh(), mesh), 0.0);
+    }
+    force_L_ = compat::create_form(*forms_.force_L, {Vp},
                                    {{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}}, constants_);
     force_projection_ = std::make_unique<L2Projection>(
-        *compat::create_form(*mass_forms_.a, {Vf, Vf}, {}, {}), scene_.domain, comm_, "polar_force_");
+        *compat::create_form(*mass_forms_.a, {Vp, Vp}, {}, {}), scene_.domain, comm_, "polar_force_");
     update_force();
     fields.set("polar.force", force_);
   }
@@ -193,7 +218,11 @@ void PolarGelSubProblem::connect(FieldRegistry& fields)
 
 void PolarGelSubProblem::update_force()
 {
-  force_projection_->project(*force_L_, *force_, "the projection of the orientation force (6.13)");
+  const char* what = "the projection of the orientation force (6.13)";
+  if (!force_out_)
+    return force_projection_->project(*force_L_, *force_, what);
+  force_projection_->project(*force_L_, *force_on_patch_, what);
+  force_out_->apply();
 }
 
 StepTimings PolarGelSubProblem::step(double dt)
@@ -202,6 +231,8 @@ StepTimings PolarGelSubProblem::step(double dt)
     throw std::logic_error("polar_gel: step before connect");
   auto t0 = Clock::now();
   dt_->value[0] = dt;
+  if (velocity_in_)
+    velocity_in_->apply();
   if (estimate_)
     estimate_->begin_step();
   // The matrix holds v^{n+1}, phi^n and the linearisation at P^n: new every step.

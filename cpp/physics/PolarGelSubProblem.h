@@ -6,6 +6,7 @@
 // (6.11), that the flow adds at the next step (polar.force); the phase field adds the
 // orientation terms of phi# (6.15) from polar.P.
 #pragma once
+#include "compat/Resample.h"
 #include "core/ExtrapolationEstimate.h"
 #include "core/SubProblem.h"
 #include "physics/FormTable.h"
@@ -43,13 +44,17 @@ private:
   /// P# of the current P and phi: the L2 projection of (6.17) (the flow's first step needs
   /// P#^0; after each step it makes P# consistent with phi^{n+1}).
   void project_sharp();
-  /// polar.force <- L2 projection of the P terms of (6.13) onto the flow's velocity space.
+  /// polar.force <- L2 projection of the P terms of (6.13) onto the flow's velocity space
+  /// (on a cell's own mesh: onto vector P2 there, then resampled onto the shared mesh).
   void update_force();
 
   const scene::Scene& scene_;
   const scene::PolarGel& gel_;
   MPI_Comm comm_;
   std::string phi_name_;
+  /// The mesh of phi and P: "" the shared mesh, else the cell's own mesh
+  /// (numerics.mesh.cell_meshes: own), where P lives and is 0 beyond.
+  std::string mesh_key_;
   PolarGelForms forms_;
   InterfaceForceForms mass_forms_; ///< the vector P2 mass matrix
   ConstantMap constants_;
@@ -76,5 +81,12 @@ private:
   std::shared_ptr<Form> sharp_L_;                 ///< (6.17) of the standalone P, phi
   std::unique_ptr<L2Projection> sharp_projection_;
   std::unique_ptr<L2Projection> force_projection_;
+
+  // On a cell's own mesh: v^{n+1} resampled onto it before each step, the force projected
+  // there and resampled onto the flow's mesh (0 beyond the patch, where P is 0)
+  std::shared_ptr<Function> velocity_;
+  std::unique_ptr<compat::Resampler> velocity_in_;
+  std::shared_ptr<Function> force_on_patch_;
+  std::unique_ptr<compat::Resampler> force_out_;
 };
 } // namespace cellphase

@@ -144,6 +144,7 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
   if (s.polar_gel)
   {
     // Section 6.3: flow, orientation field (with phi^n, v^{n+1}), phase field (with P^{n+1}).
+    // On the mesh of phi (a cell's own mesh: P lives in the cell, section 6.3).
     PlanStep polar{"polar_gel", "orientation field of the active polar gel (forms/polar_gel.py, 6.16-6.17)",
                    {state_field(s, groups.front(), "phi")}, {"polar.P", "polar.P_sharp"}};
     if (s.flow)

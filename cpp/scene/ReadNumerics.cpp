@@ -161,10 +161,6 @@ void read_numerics(const Section& top, Scene& s)
   if (num.mesh.cell_meshes == Mesh::CellMeshes::own)
   {
     const Section m = n.section("mesh");
-    // A patch would have to wrap around a periodic face (not built).
-    if (!s.domain.periodic.empty())
-      m.fail("cell_meshes", "own meshes need a domain without periodic axes (domain.periodic "
-                            "is set); use cell_meshes: shared");
     if (s.phase_field.model == Model::allen_cahn_volume)
       m.fail("cell_meshes", "own meshes do not suit allen_cahn_volume, whose multiplier (2.27) "
                             "acts on the whole domain; use cell_meshes: shared");

@@ -37,8 +37,6 @@ void read_polar_gel(const Section& top, Scene& s)
   if (cell_groups(s).size() != 1)
     p.fail("fills one cell's phase field; the scene has " + std::to_string(cell_groups(s).size())
            + " phase fields");
-  if (own_meshes(s))
-    p.fail("is solved on the shared mesh; numerics.mesh.cell_meshes: own is not available with it");
   if (s.reaction_diffusion)
     p.fail("cannot be combined with reaction_diffusion in one scene");
 
@@ -92,6 +90,10 @@ void read_polar_gel(const Section& top, Scene& s)
   g.noise = in.number("noise", g.noise, non_negative());
   g.noise_length = in.number("noise_length", g.noise_length, non_negative());
   g.inside_only = in.boolean("inside_only", g.inside_only);
+  if (own_meshes(s) && !g.inside_only)
+    in.fail("inside_only", "is false; with numerics.mesh.cell_meshes: own, P lives on the cell's "
+                           "own mesh and is 0 beyond it, so P^0 must be 0 outside the cell too: "
+                           "set inside_only: true");
   g.splay = in.number("splay", g.splay, any());
   g.mirror = in.boolean("mirror", g.mirror);
   g.seed = std::uint64_t(in.integer("seed", int(g.seed), closed(0, 2147483647)));

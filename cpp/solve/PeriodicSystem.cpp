@@ -11,8 +11,9 @@ PeriodicSystem::PeriodicSystem(std::shared_ptr<const Form> a, std::shared_ptr<co
     : a_(std::move(a)), L_(std::move(L))
 {
   auto W = a_->function_spaces()[0];
-  const auto box = compat::bounding_box(*W->mesh());
-  constraint_ = std::make_unique<PeriodicConstraint>(W, box[0], box[1], scene.domain.periodic);
+  // The domain's sides: a cell's own mesh inside them has no periodic pairs.
+  constraint_ = std::make_unique<PeriodicConstraint>(W, scene.domain.lower, scene.domain.upper,
+                                                     scene.domain.periodic);
   A_ = std::make_unique<dolfinx::la::petsc::Matrix>(constraint_->create_matrix(*a_));
   b_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());
   x_ = std::make_unique<dolfinx::la::Vector<T>>(constraint_->create_vector());

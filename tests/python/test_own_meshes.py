@@ -218,7 +218,6 @@ def test_a_cell_that_leaves_its_patch_stops_with_a_message(tmp_path):
 
 
 @pytest.mark.parametrize("change, message", [
-    (lambda s: s["domain"].update(periodic=["x"]), "cell_meshes"),
     (lambda s: s["numerics"]["mesh"].update(own_margin=0.05), "own_margin"),
     (lambda s: s["phase_field"].update(model="allen_cahn_volume"), "allen_cahn_volume"),
     (lambda s: s["numerics"]["mesh"].update(cell_meshes="private"), "cell_meshes"),

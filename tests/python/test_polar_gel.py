@@ -127,6 +127,60 @@ def test_coarser_interior_and_reused_orientation_factors(tmp_path):
             assert abs(a - b) < 1e-7 * max(1, abs(a)), (key, a, b)
 
 
+def test_own_mesh_gives_the_shared_mesh_cell(tmp_path):
+    """numerics.mesh.cell_meshes: own solves phi and P on the cell's own mesh (a patch of the
+    periodic channel that reaches neither periodic side) and resamples the orientation force
+    onto the flow's mesh: the same cell as on the shared mesh to the discretisation's
+    difference (the patch's edge), on fewer dofs, and on two ranks as on one."""
+    scene = gel_scene(activity=1.125, end_time=0.2, initial={"inside_only": True})
+    scene["domain"].update(upper=[40, 16], resolution=[20, 8])  # room beside the patch
+    scene["cells"][0]["center"] = [20, 8]
+    scene["numerics"]["mesh"]["inside_coarser_by"] = 1
+    (tmp_path / "shared").mkdir()
+    shared = run_scene(scene, tmp_path / "shared")
+    own_scene = copy.deepcopy(scene)
+    own_scene["numerics"]["mesh"]["cell_meshes"] = "own"
+    (tmp_path / "own").mkdir()
+    own = run_scene(own_scene, tmp_path / "own")
+    for key in ("dofs", "flow_dofs", "cell_velocity_x", "center_x", "circularity",
+                "polar_energy", "helfrich_energy", "volume"):
+        print(key, shared[key][-1], own[key][-1])
+    # phi and P on the patch only (seen: 50685 -> 47385 here, where the refined cell fills
+    # most of the channel; 113k -> 51k in the 160 x 40 channel of demos/polar-gel-splay).
+    cell_dofs = [c["dofs"][-1] - c["flow_dofs"][-1] for c in (shared, own)]
+    assert cell_dofs[1] < cell_dofs[0], cell_dofs
+    v0 = own["volume"][0]
+    assert max(abs(v - v0) for v in own["volume"]) < 1e-12 * v0
+    for key, tol in (("cell_velocity_x", 2e-2), ("center_x", 1e-5), ("circularity", 1e-3),
+                     ("polar_energy", 1e-3), ("helfrich_energy", 1e-3)):
+        worst = max(abs(a - b) for a, b in zip(shared[key], own[key]))
+        scale = max(abs(a) for a in shared[key])
+        assert worst < tol * scale, (key, worst, scale)
+    # Several ranks: the patch and its P are shared across the ranks' stripes.
+    two_scene = copy.deepcopy(own_scene)
+    two_scene["numerics"]["end_time"] = 0.06
+    (tmp_path / "ranks").mkdir()
+    worst, _, _ = one_rank_against_two(two_scene, tmp_path / "ranks")
+    key = max(worst, key=worst.get)
+    assert worst[key] < 1e-7, (key, worst[key])
+
+
+def test_own_mesh_stops_at_a_periodic_side(tmp_path):
+    """A cell's own mesh does not wrap around a periodic side: a cell whose patch would reach
+    one is refused before the first step, with the side named."""
+    scene = gel_scene(activity=1.125, end_time=0.02, initial={"inside_only": True})
+    scene["cells"][0]["center"] = [6, 8]
+    scene["numerics"]["mesh"]["cell_meshes"] = "own"
+    require_exe()
+    path = tmp_path / "scene.yaml"
+    scene["output"] = {"directory": str(tmp_path / "out"), "progress": False}
+    path.write_text(yaml.safe_dump(scene))
+    proc = subprocess.run([EXE, "run", str(path)], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2, proc.stdout + proc.stderr  # bad input
+    assert "reaches the periodic side x = 0" in proc.stderr, proc.stderr
+    assert "cell_meshes: shared" in proc.stderr
+
+
 def check(scene, tmp_path):
     require_exe()
     path = tmp_path / "scene.yaml"
@@ -175,6 +229,8 @@ BAD = [
     (("polar_gel", "solver"), "fast", "polar_gel.solver: unknown value"),
     (("numerics", "mesh", "inside_coarser_by"), 3,
      "numerics.mesh.inside_coarser_by: found 3, expected less than the 3 refinement levels"),
+    # P lives on the cell's own mesh: P^0 must vanish outside the cell.
+    (("numerics", "mesh", "cell_meshes"), "own", "polar_gel.initial.inside_only: is false"),
 ]
 
 
