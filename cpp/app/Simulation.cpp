@@ -383,7 +383,8 @@ void Simulation::write_fields(double time, int step)
 FieldMap Simulation::output_fields(const std::string& key) const
 {
   // "phi" is the field labelled phi, or with several cells every phi_<group>. On a cell's
-  // own mesh the state own_phi_<group> is written as phi_<group>.
+  // own mesh the state own_phi_<group> is written as phi_<group>, and a field that lives
+  // there only (the polar gel's P) under its own label.
   std::vector<std::string> labels;
   for (const auto& label : scene_.output.fields)
   {
@@ -396,7 +397,9 @@ FieldMap Simulation::output_fields(const std::string& key) const
   FieldMap out;
   for (const auto& label : labels)
   {
-    const std::string name = fields_.by_label(key.empty() ? label : "own_" + label);
+    std::string name = fields_.by_label(key.empty() ? label : "own_" + label);
+    if (name.empty() && !key.empty())
+      name = fields_.by_label(label);
     if (name.empty() || fields_.info(name).mesh != key)
       continue;
     if (auto f = fields_.find(name))

@@ -42,10 +42,17 @@ PolarGelSubProblem::PolarGelSubProblem(scene::PlanStep step, const scene::Scene&
 
 void PolarGelSubProblem::declare(FieldRegistry& fields)
 {
-  fields.declare({"polar.P", "P", name(), FieldSpace::vector_p2, Transfer::interpolate, true,
-                  mesh_key_});
-  fields.declare({"polar.P_sharp", "P_sharp", name(), FieldSpace::vector_p2,
+  // On a cell's own mesh P and P# are written there as own_P, own_P_sharp (as P, P_sharp in
+  // the cell's field output), and their copies on the shared mesh as P, P_sharp.
+  const std::string own = mesh_key_.empty() ? "" : "own_";
+  fields.declare({"polar.P", own + "P", name(), FieldSpace::vector_p2, Transfer::interpolate,
+                  true, mesh_key_});
+  fields.declare({"polar.P_sharp", own + "P_sharp", name(), FieldSpace::vector_p2,
                   Transfer::interpolate, true, mesh_key_});
+  if (!mesh_key_.empty())
+    for (const char* f : {"P", "P_sharp"})
+      fields.declare({std::string("polar.shared.") + f, f, name(), FieldSpace::vector_p2,
+                      Transfer::recompute, false});
   if (scene_.flow)
     fields.declare({"polar.force", "polar_force", name(), FieldSpace::other, Transfer::recompute,
                     false});
@@ -143,6 +150,21 @@ void PolarGelSubProblem::attach(FieldRegistry& fields)
     project_sharp();
   if (estimate_)
     estimate_->attach(fields);
+  if (!mesh_key_.empty())
+  {
+    // Copies on the shared mesh (0 beyond the patch), made again after every step.
+    const auto cells = compat::cells_inside(*fields.mesh(""), mesh);
+    to_shared_.clear();
+    for (auto [from, to] : {std::pair{P_, "polar.shared.P"}, {P_sharp_, "polar.shared.P_sharp"}})
+    {
+      auto copy = std::make_shared<Function>(fields.space("", FieldSpace::vector_p2));
+      copy->x()->set(0.0);
+      copy->name = fields.info(to).label;
+      to_shared_.push_back(std::make_unique<compat::Resampler>(from, copy, cells, 0.0));
+      to_shared_.back()->apply();
+      fields.set(to, copy);
+    }
+  }
 
   const CoefficientMap coeffs{{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}};
   energy_ = compat::create_form(*forms_.energy, {}, coeffs, constants_, mesh);
@@ -271,6 +293,8 @@ StepTimings PolarGelSubProblem::finish_step()
   project_sharp();
   if (force_)
     update_force();
+  for (auto& copy : to_shared_)
+    copy->apply();
   t.assemble = seconds_since(t0);
   last_wall_ += t.assemble;
   return t;

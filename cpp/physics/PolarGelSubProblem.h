@@ -88,5 +88,6 @@ private:
   std::unique_ptr<compat::Resampler> velocity_in_;
   std::shared_ptr<Function> force_on_patch_;
   std::unique_ptr<compat::Resampler> force_out_;
+  std::vector<std::unique_ptr<compat::Resampler>> to_shared_; ///< P, P# -> their shared copies
 };
 } // namespace cellphase

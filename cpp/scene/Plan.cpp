@@ -154,6 +154,8 @@ std::map<std::string, PlanStep> available_steps(const Scene& s)
     }
     if (s.numerics.adaptive_dt) // P at the step before: its time-error estimate
       polar.writes.push_back("polar.P_prev");
+    if (own_meshes(s)) // P on the cell's own mesh; copies on the shared mesh for the output
+      polar.writes.insert(polar.writes.end(), {"polar.shared.P", "polar.shared.P_sharp"});
     steps[polar.name] = polar;
     steps.at(groups.front().step).reads.push_back("polar.P");
   }

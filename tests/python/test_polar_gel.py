@@ -140,8 +140,13 @@ def test_own_mesh_gives_the_shared_mesh_cell(tmp_path):
     shared = run_scene(scene, tmp_path / "shared")
     own_scene = copy.deepcopy(scene)
     own_scene["numerics"]["mesh"]["cell_meshes"] = "own"
+    own_scene["output"] = {"fields": ["phi", "v", "P"]}
     (tmp_path / "own").mkdir()
     own = run_scene(own_scene, tmp_path / "own")
+    # P in the field output of both meshes: on the cell's own and its copy on the shared one.
+    for name in ("fields.xdmf", "cell.xdmf"):
+        text = (tmp_path / "own" / "out" / name).read_text()
+        assert 'Attribute Name="P"' in text and 'Attribute Name="phi"' in text, name
     for key in ("dofs", "flow_dofs", "cell_velocity_x", "center_x", "circularity",
                 "polar_energy", "helfrich_energy", "volume"):
         print(key, shared[key][-1], own[key][-1])
