@@ -1,8 +1,7 @@
 #include "mesh/OwnMesh.h"
-#include "scene/SceneLoader.h"
-#include <cstdio>
+#include "scene/Resolution.h"
+#include <algorithm>
 #include <limits>
-#include <string>
 
 namespace cellphase
 {
@@ -19,19 +18,18 @@ std::shared_ptr<Mesh> OwnMesh::build(const PointEvaluator& phi, const compat::Bo
     box_[a] = band[a] - margin_;
     box_[3 + a] = band[3 + a] + margin_;
   }
+  // A patch is not wrapped around a periodic side: a cell whose patch would come within
+  // two base cells of one gets the whole domain (its cut box then covers the domain), where
+  // it crosses the side as on the shared mesh.
   const auto& d = scene_.domain;
-  for (int a : d.periodic) // a patch is not wrapped around a periodic side
-    if (box_[a] <= d.lower[a] || box_[3 + a] >= d.upper[a])
-    {
-      char text[400];
-      std::snprintf(text, sizeof text,
-                    "numerics.mesh.cell_meshes: own: a cell's own mesh (its band phi > -0.9 "
-                    "grown by numerics.mesh.own_margin = %g) reaches the periodic side %c = %g "
-                    "of the domain: own meshes do not wrap around periodic sides; move the "
-                    "cell, lengthen the domain or use numerics.mesh.cell_meshes: shared",
-                    margin_, char('x' + a), box_[a] <= d.lower[a] ? d.lower[a] : d.upper[a]);
-      throw scene::SceneError(text);
-    }
+  const double h = scene::base_cell_size(d);
+  for (int a : d.periodic)
+    if (box_[a] < d.lower[a] + 2 * h || box_[3 + a] > d.upper[a] - 2 * h)
+      for (int b = 0; b < 3; ++b)
+      {
+        box_[b] = std::min(box_[b], d.lower[b] - margin_);
+        box_[3 + b] = std::max(box_[3 + b], d.upper[b] + margin_);
+      }
   refined_ = std::make_unique<AdaptiveMesh>(scene_, compat::create_patch(*base_, box_));
   return refined_->build(phi);
 }
@@ -64,5 +62,13 @@ compat::Box box_above(const Function& f, double level)
   for (int a = 0; a < 3; ++a)
     box[3 + a] = -box[3 + a];
   return box;
+}
+
+bool covers_domain(const compat::Box& box, const scene::Domain& d)
+{
+  for (int a = 0; a < d.dim; ++a)
+    if (box[a] > d.lower[a] || box[3 + a] < d.upper[a])
+      return false;
+  return true;
 }
 } // namespace cellphase

@@ -40,6 +40,10 @@ private:
   std::unique_ptr<AdaptiveMesh> refined_;
 };
 
+/// Whether a cut box covers the whole domain (a cell next to a periodic side, OwnMesh::build):
+/// the "patch" is then the whole domain and has no cut edges.
+bool covers_domain(const compat::Box& box, const scene::Domain& d);
+
 /// Box of the nodes where f > level over all ranks (empty, min > max, if there are none).
 compat::Box box_above(const Function& f, double level);
 } // namespace cellphase

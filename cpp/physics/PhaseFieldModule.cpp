@@ -70,6 +70,7 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
   dt_ = constant(nu.dt);
   lam_v_ = constant(0.0);
   lam_a_ = constant(0.0);
+  own_mesh_ = constant(nu.mesh.cell_meshes == scene::Mesh::CellMeshes::own ? 1.0 : 0.0);
   constants_ = {{"dt", dt_},
                 {"eps", constant(nu.epsilon)},
                 {"gamma", constant(pf.mobility)},
@@ -86,7 +87,7 @@ PhaseFieldModule::PhaseFieldModule(const scene::Scene& scene, MPI_Comm comm)
                 // forms/helfrich_hm1.py: mobility on the step's change of w (0 without flow)
                 {"beta_coupling", constant(scene.flow ? scene.flow->coupling_stabilisation : 0.0)},
                 // advect phi + 1 on a cell's own mesh (forms/cellphase_ufl.py)
-                {"own_mesh", constant(nu.mesh.cell_meshes == scene::Mesh::CellMeshes::own ? 1.0 : 0.0)},
+                {"own_mesh", own_mesh_},
                 {"cos_theta", constant(scene.contact_angle_deg
                                            ? std::cos(*scene.contact_angle_deg * std::numbers::pi / 180)
                                            : 0.0)}};
@@ -259,6 +260,12 @@ void PhaseFieldModule::refresh_interaction()
   auto before = interaction_of_step_->x()->array();
   for (std::size_t i = 0; i < w.size(); ++i)
     w[i] += now[i] - before[i];
+}
+
+void PhaseFieldModule::set_patch_edges(bool cut)
+{
+  own_mesh_->value[0] = cut ? 1.0 : 0.0;
+  matrix_current_ = false;
 }
 
 void PhaseFieldModule::set_orientation(std::shared_ptr<const Function> P,

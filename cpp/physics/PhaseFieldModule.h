@@ -40,6 +40,10 @@ public:
   /// flow step before each phase-field step, section 5.3); call after every attach. Without
   /// it the advection velocity is zero. The matrix then changes every step.
   void set_velocity(std::shared_ptr<const Function> v);
+  /// A cell's own mesh: whether it has cut edges (a patch: phi + 1 advected, with the
+  /// outflow term at the edges, forms/cellphase_ufl.py) or is the whole domain (phi advected,
+  /// as on the shared mesh). Call after every attach.
+  void set_patch_edges(bool cut);
   /// dE/dphi of the model's energy, the potential of the interface force (dE/dphi) grad phi
   /// of the flow: mu (Cahn-Hilliard, to be scaled by 1/Ca), w (helfrich_hm1, (3.62)), or for
   /// the L2 Helfrich flows the L2 projection of (3.84), kept up to date after every step.
@@ -206,6 +210,7 @@ private:
   bool matrix_current_ = false; ///< stabilised scheme: matrix assembled and factorised
   ConstantMap constants_;
   std::shared_ptr<Constant> dt_, lam_v_, lam_a_;
+  std::shared_ptr<Constant> own_mesh_; ///< 1 on a patch with cut edges, else 0 (set_patch_edges)
   ConstraintTargets targets_;
   double domain_volume_;
   int factorisations_ = 0, krylov_iterations_ = 0;

@@ -122,6 +122,10 @@ void PhaseFieldSubProblem::attach(FieldRegistry& fields)
     patch_volume_ = mesh_volume(module_.space());
     shared_volume_ = mesh_volume(fields.space("", FieldSpace::scalar_p2));
     cut_box_ = fields.cut_box(group_.prefix).value();
+    // Next to a periodic side the cell's mesh is the whole domain (OwnMesh::build): no cut
+    // edges, phi advected as on the shared mesh.
+    whole_domain_ = covers_domain(cut_box_, scene_.domain);
+    module_.set_patch_edges(!whole_domain_);
     if (cell_volume_target_ >= 0) // int phi over this patch for the same int (1 + phi)
       module_.set_targets({cell_volume_target_ - patch_volume_, module_.targets().area});
   }
@@ -152,7 +156,9 @@ void PhaseFieldSubProblem::connect(FieldRegistry& fields)
       velocity_in_->apply();
       module_.set_velocity(velocity_);
       auto phi = module_.fields().at("phi");
-      edge_outflow_form_ = compat::create_form(*observable_forms(dim).edge_outflow, {},
+      edge_outflow_form_.reset();
+      if (!whole_domain_)
+        edge_outflow_form_ = compat::create_form(*observable_forms(dim).edge_outflow, {},
                                                {{"phi", phi}, {"v", velocity_}}, {},
                                                phi->function_space()->mesh());
     }
@@ -329,7 +335,7 @@ void PhaseFieldSubProblem::observe(Observation& row)
     for (std::size_t d = 0; d < velocity_forms_.size() && weight > 0; ++d)
       velocity[d] = compat::assemble_scalar(*velocity_forms_[d]) / weight;
   }
-  if (edge_outflow_form_) // int (1 + phi)/2 carried out so far, relative to the cell volume
+  if (velocity_) // int (1 + phi)/2 carried out so far, relative to the cell volume (own mesh)
     row.extra.push_back({(groups_ > 1 ? group_.name + "." : "") + "edge_outflow",
                          edge_outflow_ / 2 / v.volume});
   if (groups_ > 1)
@@ -367,16 +373,6 @@ std::string PhaseFieldSubProblem::patch_problem() const
                   "-0.9, numerics.mesh.own_margin = %g): remesh more often "
                   "(numerics.mesh.remesh_every) or widen the margin",
                   groups_ > 1 ? (" " + group_.name).c_str() : "", gap, margin);
-  // The next remesh cuts the band's box grown by the margin, which may not reach a
-  // periodic side (OwnMesh::build).
-  const auto& d = scene_.domain;
-  for (int a : d.periodic)
-    if (band[a] - margin <= d.lower[a] || band[3 + a] + margin >= d.upper[a])
-      return format("cell%s came within numerics.mesh.own_margin = %g of the periodic side "
-                    "%c = %g: own meshes do not wrap around periodic sides; lengthen the "
-                    "domain or use numerics.mesh.cell_meshes: shared",
-                    groups_ > 1 ? (" " + group_.name).c_str() : "", margin, char('x' + a),
-                    band[a] - margin <= d.lower[a] ? d.lower[a] : d.upper[a]);
   return "";
 }
 

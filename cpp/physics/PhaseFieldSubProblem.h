@@ -77,6 +77,7 @@ private:
   std::vector<std::shared_ptr<Form>> velocity_forms_;
   double patch_volume_ = 0, shared_volume_ = 0;               ///< |own mesh|, |shared mesh|
   compat::Box cut_box_{}; ///< the box its own mesh was cut around
+  bool whole_domain_ = false; ///< that box covers the domain (a cell next to a periodic side)
   /// int (1 + phi), the volume target that does not depend on the patch; < 0 until start().
   double cell_volume_target_ = -1;
 };

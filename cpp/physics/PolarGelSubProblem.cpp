@@ -205,7 +205,8 @@ void PolarGelSubProblem::connect(FieldRegistry& fields)
       velocity_in_ = std::make_unique<compat::Resampler>(fields.get("flow.v"), velocity_,
                                                          compat::local_cells(*mesh), 0.0);
     v_ = velocity_;
-  }  // P^n and P#^n are the registry's fields themselves: the step assembles from them before
+  }
+  // P^n and P#^n are the registry's fields themselves: the step assembles from them before
   // it overwrites P.
   auto V = std::const_pointer_cast<Space>(P_->function_space());
   const CoefficientMap coeffs{{"Pi", P_}, {"Psi", P_sharp_}, {"phi", phi_}, {"v", v_}};
