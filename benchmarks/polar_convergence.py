@@ -154,7 +154,7 @@ def main():
     # Both halves of the table stay in the report when only one study is run: the other
     # is reported from its members on disk.
     given = [p.resolve() for p in args.studies]
-    studies = given + [p for p in STUDIES if p.resolve() not in given]
+    studies = [p.resolve() for p in STUDIES] + [p for p in given if p not in STUDIES]
     lines = ["# Table 6.2: convergence of the motile polar gel cell in epsilon", "",
              "Studies: " + ", ".join(f"`{p.relative_to(ROOT) if p.is_relative_to(ROOT) else p}`"
                                      for p in studies)
