@@ -8,8 +8,8 @@ The H^-1 flows keep int phi, and their bulk sits slightly above -1 (the diffuse
 interface's Gibbs-Thomson shift): what the bulk holds, the cell's zero level set does not
 enclose. On a cell's own mesh the bulk is the patch's, on the shared mesh the whole
 domain's, so the two enclose different areas (demos/polar-gel-splay/README.md, "Where the
-difference comes from"). The fields are read with meshio and integrated as piecewise
-linear on the output mesh (P2 fields are written on a refined P1 mesh): the area of
+difference comes from"). The fields are read with python/cellphase_results.py and
+integrated as piecewise linear on the output mesh (P2 fields are written on a refined P1 mesh): the area of
 phi > 0 clipped exactly per triangle, the bulk being the triangles with phi < L at every
 vertex (default L = -0.9, outside the band).
 """
@@ -17,25 +17,24 @@ import argparse
 import sys
 from pathlib import Path
 
-import meshio
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from cellphase_results import read_fields  # noqa: E402
 
 
 def last_fields(run_dir):
-    """Points, triangles, phi and time of the last output of RUN_DIR/fields.xdmf."""
-    path = Path(run_dir) / "fields.xdmf"
-    if not path.is_file():
-        sys.exit(f"phase_field_budget: {path} not found (a run with output.fields including phi)")
-    with meshio.xdmf.TimeSeriesReader(str(path)) as reader:
-        points, cells = reader.read_points_cells()
-        for k in range(reader.num_steps):
-            time, point_data, _ = reader.read_data(k)
-    if "phi" not in point_data:
-        sys.exit(f"phase_field_budget: {path} has no field phi")
-    triangles = [c.data for c in cells if c.type == "triangle"]
-    if not triangles:
-        sys.exit(f"phase_field_budget: {path} has no triangles (2D runs only)")
-    return points[:, :2], triangles[0], point_data["phi"].ravel(), float(time)
+    """Points, triangles, phi and time of the last output of RUN_DIR (fields.xdmf, or the
+    VTK index), read by the project's reader."""
+    frames = list(read_fields(run_dir, fields=["phi"]))
+    if not frames:
+        sys.exit(f"phase_field_budget: {run_dir} has no output frames")
+    time, points, cells, values = frames[-1]
+    if "phi" not in values:
+        sys.exit(f"phase_field_budget: {run_dir} has no field phi at t = {time:g}")
+    if cells.shape[1] != 3:
+        sys.exit(f"phase_field_budget: {run_dir} is not a 2D triangle mesh")
+    return points[:, :2], cells, np.asarray(values["phi"], dtype=float), float(time)
 
 
 def triangle_areas(x, tri):

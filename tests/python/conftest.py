@@ -4,6 +4,7 @@ import os
 import shutil
 import subprocess
 
+import numpy as np
 import pytest
 import yaml
 
@@ -80,3 +81,26 @@ def circle_scene(model, epsilon=0.08, radius=1.0, **numerics):
         "numerics": {"epsilon": epsilon, "dt": 1e-3, "end_time": 0.01,
                      "mesh": {"remesh_every": 0, "points_across_interface": 4}, **numerics},
     }
+
+
+def write_vtk_run(run_dir, points, cells, fields, earlier=()):
+    """Output times in the ascii VTK layout python/cellphase_results.py reads: `fields` at
+    t = 2.5, after the (time, fields) pairs of `earlier`."""
+    run_dir.mkdir()
+    text = lambda a: " ".join(f"{x:.17g}" for x in np.ravel(a))  # noqa: E731
+    points3 = np.column_stack([points, np.zeros(len(points))])
+    datasets = ""
+    for k, (time, frame) in enumerate([*earlier, (2.5, fields)]):
+        data = "".join(f'<DataArray Name="{name}" NumberOfComponents="{np.shape(a)[1] if np.ndim(a) > 1 else 1}" '
+                       f'format="ascii">{text(a)}</DataArray>' for name, a in frame.items())
+        (run_dir / f"fields_{k}.vtu").write_text(
+            '<VTKFile type="UnstructuredGrid"><UnstructuredGrid>'
+            f'<Piece NumberOfPoints="{len(points)}" NumberOfCells="{len(cells)}">'
+            f'<Points><DataArray NumberOfComponents="3" format="ascii">{text(points3)}</DataArray></Points>'
+            f'<Cells><DataArray Name="connectivity" format="ascii">{" ".join(map(str, cells.ravel()))}</DataArray>'
+            f'<DataArray Name="offsets" format="ascii">{" ".join(map(str, 3 * np.arange(1, len(cells) + 1)))}</DataArray>'
+            f'<DataArray Name="types" format="ascii">{" ".join(["5"] * len(cells))}</DataArray></Cells>'
+            f'<PointData>{data}</PointData></Piece></UnstructuredGrid></VTKFile>')
+        datasets += f'<DataSet timestep="{time}" file="fields_{k}.vtu"/>'
+    (run_dir / "fields.pvd").write_text(
+        f'<VTKFile type="Collection"><Collection>{datasets}</Collection></VTKFile>')

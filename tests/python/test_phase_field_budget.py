@@ -1,11 +1,10 @@
-"""python/phase_field_budget.py on fields written with meshio: exact areas for a linear
+"""python/phase_field_budget.py on fields in the VTK layout of the output: exact areas for a linear
 phi, the circle's area to O(h^2), and the bulk's share of int (1 + phi)/2."""
-import os
 import sys
 from pathlib import Path
 
-import meshio
 import numpy as np
+from conftest import write_vtk_run
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "python"))
@@ -28,25 +27,18 @@ def square_mesh(n, size=2.0):
 
 
 def write_fields(run_dir, points, triangles, phi):
-    run_dir.mkdir(parents=True, exist_ok=True)
-    cwd = os.getcwd()
-    os.chdir(run_dir)  # meshio writes the heavy data next to the working directory
-    try:
-        with meshio.xdmf.TimeSeriesWriter("fields.xdmf") as writer:
-            writer.write_points_cells(points, [("triangle", triangles)])
-            writer.write_data(0.0, point_data={"phi": np.zeros(len(points))})
-            writer.write_data(1.5, point_data={"phi": phi})  # the last time is read
-    finally:
-        os.chdir(cwd)
+    """A zero phi at t = 0, then phi at t = 2.5 (the last time, which the tool reads)."""
+    write_vtk_run(run_dir, points[:, :2], triangles, {"phi": phi},
+                  earlier=[(0.0, {"phi": np.zeros(len(points))})])
 
 
 def test_a_linear_phi_gives_its_area_exactly_and_the_last_time(tmp_path):
     points, triangles = square_mesh(7)
-    write_fields(tmp_path, points, triangles, 0.7 - points[:, 0] + 0.1 * points[:, 1])
-    b = budget(tmp_path, -0.9)
+    write_fields(tmp_path / "run", points, triangles, 0.7 - points[:, 0] + 0.1 * points[:, 1])
+    b = budget(tmp_path / "run", -0.9)
     # {0.7 - x + 0.1 y > 0} in [0, 2]^2: x < 0.7 + 0.1 y, area 2 * 0.7 + 0.1 * 2 = 1.6
     assert abs(b["inside"] - 1.6) < 1e-12
-    assert b["time"] == 1.5
+    assert b["time"] == 2.5
 
 
 def test_a_circle_converges_at_second_order(tmp_path):
@@ -54,8 +46,8 @@ def test_a_circle_converges_at_second_order(tmp_path):
     for n in (20, 40, 80):
         points, triangles = square_mesh(n)
         r = np.hypot(points[:, 0] - 1, points[:, 1] - 1)
-        write_fields(tmp_path / str(n), points, triangles, np.tanh((0.6 - r) / 0.05))
-        errors.append(abs(budget(tmp_path / str(n), -0.9)["inside"] - np.pi * 0.36))
+        write_fields(tmp_path / f"n{n}", points, triangles, np.tanh((0.6 - r) / 0.05))
+        errors.append(abs(budget(tmp_path / f"n{n}", -0.9)["inside"] - np.pi * 0.36))
     rates = [np.log2(a / b) for a, b in zip(errors, errors[1:])]
     print(f"circle area errors {errors}, rates {rates}")
     assert min(rates) > 1.5  # the zero line of a linear interpolant is O(h^2) off
@@ -66,8 +58,8 @@ def test_the_bulk_holds_its_shift_times_its_area(tmp_path):
     r = np.hypot(points[:, 0] - 1, points[:, 1] - 1)
     shift = 2e-4
     phi = np.where(r < 0.5, 1.0, -1.0 + shift)  # a disc and a bulk lifted by the shift
-    write_fields(tmp_path, points, triangles, phi)
-    b = budget(tmp_path, -0.9)
+    write_fields(tmp_path / "run", points, triangles, phi)
+    b = budget(tmp_path / "run", -0.9)
     # Every triangle with a vertex in the disc is not bulk; the rest holds shift / 2 each.
     assert abs(b["bulk"] - shift / 2 * b["bulk_area"]) < 1e-12
     assert 4 - np.pi * 0.6**2 < b["bulk_area"] < 4 - np.pi * 0.5**2

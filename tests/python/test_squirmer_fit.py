@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import write_vtk_run
 
 PYTHON_DIR = Path(__file__).resolve().parents[2] / "python"
 SCRIPT = PYTHON_DIR / "squirmer_fit.py"
@@ -174,26 +175,6 @@ def test_cli_missing_directory(tmp_path):
     result = squirmer_fit(missing)
     assert result.returncode == 2
     assert str(missing) in result.stderr and "Traceback" not in result.stderr
-
-
-def write_vtk_run(run_dir, points, cells, fields):
-    """One output time in the ascii VTK layout python/cellphase_results.py reads."""
-    run_dir.mkdir()
-    text = lambda a: " ".join(f"{x:.17g}" for x in np.ravel(a))  # noqa: E731
-    data = "".join(f'<DataArray Name="{name}" NumberOfComponents="{np.shape(a)[1] if np.ndim(a) > 1 else 1}" '
-                   f'format="ascii">{text(a)}</DataArray>' for name, a in fields.items())
-    points3 = np.column_stack([points, np.zeros(len(points))])
-    (run_dir / "fields_0.vtu").write_text(
-        '<VTKFile type="UnstructuredGrid"><UnstructuredGrid>'
-        f'<Piece NumberOfPoints="{len(points)}" NumberOfCells="{len(cells)}">'
-        f'<Points><DataArray NumberOfComponents="3" format="ascii">{text(points3)}</DataArray></Points>'
-        f'<Cells><DataArray Name="connectivity" format="ascii">{" ".join(map(str, cells.ravel()))}</DataArray>'
-        f'<DataArray Name="offsets" format="ascii">{" ".join(map(str, 3 * np.arange(1, len(cells) + 1)))}</DataArray>'
-        f'<DataArray Name="types" format="ascii">{" ".join(["5"] * len(cells))}</DataArray></Cells>'
-        f'<PointData>{data}</PointData></Piece></UnstructuredGrid></VTKFile>')
-    (run_dir / "fields.pvd").write_text(
-        '<VTKFile type="Collection"><Collection>'
-        '<DataSet timestep="2.5" file="fields_0.vtu"/></Collection></VTKFile>')
 
 
 def test_cli_on_a_run(tmp_path):
