@@ -7,7 +7,10 @@
 #include <basix/finite-element.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/generation.h>
+#include <algorithm>
+#include <functional>
 #include <numeric>
+#include <span>
 #include <cmath>
 
 using namespace cellphase;
@@ -17,21 +20,18 @@ namespace
 {
 constexpr std::size_t n = 2; // the unit square in 2 x 2 squares of two triangles
 
-/// Cells whose vertices (P1 node numbers iy (n + 1) + ix of create_rectangle's input)
-/// all lie in the bottom-left square go to rank 0, the others to the last rank. Every cell
-/// is ghosted on every other rank, from which create_mesh finds the shared vertices (the
-/// base mesh keeps no ghost cells).
-graph::AdjacencyList<std::int32_t> bottom_left_on_rank_0(MPI_Comm, int parts, int,
-                                                        const graph::AdjacencyList<std::int64_t>& cells,
-                                                        mesh::GhostMode)
+/// Cells for which `on_rank_0` holds (given their P1 node numbers iy (nx + 1) + ix of
+/// create_rectangle's input) go to rank 0, the others to the last rank. Every cell is
+/// ghosted on every other rank, from which create_mesh finds the shared vertices (the base
+/// mesh keeps no ghost cells).
+graph::AdjacencyList<std::int32_t>
+split_by(int parts, const graph::AdjacencyList<std::int64_t>& cells,
+         const std::function<bool(std::span<const std::int64_t>)>& on_rank_0)
 {
   std::vector<std::int32_t> dest, offsets{0};
   for (std::int32_t c = 0; c < cells.num_nodes(); ++c)
   {
-    bool bottom_left = true;
-    for (auto v : cells.links(c))
-      bottom_left = bottom_left && std::size_t(v) % (n + 1) <= n / 2 && std::size_t(v) / (n + 1) <= n / 2;
-    const int owner = bottom_left ? 0 : parts - 1;
+    const int owner = on_rank_0(cells.links(c)) ? 0 : parts - 1;
     dest.push_back(owner);
     for (int r = 0; r < parts; ++r)
       if (r != owner)
@@ -39,6 +39,18 @@ graph::AdjacencyList<std::int32_t> bottom_left_on_rank_0(MPI_Comm, int parts, in
     offsets.push_back(std::int32_t(dest.size()));
   }
   return graph::AdjacencyList<std::int32_t>(std::move(dest), std::move(offsets));
+}
+
+/// The cells of the bottom-left square of the unit square on rank 0.
+graph::AdjacencyList<std::int32_t> bottom_left_on_rank_0(MPI_Comm, int parts, int,
+                                                        const graph::AdjacencyList<std::int64_t>& cells,
+                                                        mesh::GhostMode)
+{
+  return split_by(parts, cells, [](std::span<const std::int64_t> nodes)
+  {
+    return std::all_of(nodes.begin(), nodes.end(), [](std::int64_t v)
+                       { return std::size_t(v) % (n + 1) <= n / 2 && std::size_t(v) / (n + 1) <= n / 2; });
+  });
 }
 
 /// The owned cells of `mesh` that have the node `at` and lie in the quadrant of their
@@ -62,25 +74,15 @@ std::vector<std::int32_t> cells_at(const Mesh& mesh, std::array<double, 2> at, i
   return cells;
 }
 
-/// Cells of the left half of a strip of nx x 1 squares to rank 0, the others to the last
-/// rank, each ghosted on every other rank (as bottom_left_on_rank_0).
+/// The cells of the left half of a strip of nx squares in x on rank 0.
 graph::AdjacencyList<std::int32_t> left_half_on_rank_0(int nx, int parts,
                                                       const graph::AdjacencyList<std::int64_t>& cells)
 {
-  std::vector<std::int32_t> dest, offsets{0};
-  for (std::int32_t c = 0; c < cells.num_nodes(); ++c)
+  return split_by(parts, cells, [nx](std::span<const std::int64_t> nodes)
   {
-    bool left = true;
-    for (auto v : cells.links(c))
-      left = left && int(v % (nx + 1)) <= nx / 2;
-    const int owner = left ? 0 : parts - 1;
-    dest.push_back(owner);
-    for (int r = 0; r < parts; ++r)
-      if (r != owner)
-        dest.push_back(r);
-    offsets.push_back(std::int32_t(dest.size()));
-  }
-  return graph::AdjacencyList<std::int32_t>(std::move(dest), std::move(offsets));
+    return std::all_of(nodes.begin(), nodes.end(),
+                       [nx](std::int64_t v) { return int(v % (nx + 1)) <= nx / 2; });
+  });
 }
 
 std::int64_t global_vertices(const Mesh& m)

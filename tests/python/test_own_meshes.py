@@ -60,8 +60,7 @@ def test_each_cell_keeps_its_volume_across_new_patches_and_the_energy_decays(pus
     assert not [b - a for a, b in zip(e, e[1:]) if b > a + 1e-9 * abs(e[0])]
 
 
-# One ellipse relaxing in a shear flow between walls moving at +-4 (not periodic: a patch
-# does not wrap around a periodic face).
+# One ellipse relaxing in a shear flow between walls moving at +-4.
 SHEAR = {
     "domain": {"lower": [-1.5, -0.75], "upper": [1.5, 0.75], "resolution": [24, 12]},
     "cells": [{"shape": "ellipse", "center": [-0.28, 0.13], "semi_axes": [0.3, 0.2]}],
