@@ -1,6 +1,9 @@
 #include "compat/Patch.h"
 #include "compat/AllToAll.h"
+#include "compat/PeriodicImages.h"
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 
@@ -106,11 +109,35 @@ std::vector<std::vector<int>> ghost_ranks(const Mesh& base, std::span<const std:
   return ranks;
 }
 
+/// A patch wrapped across periodic sides: the base nodes below `split` along a wrapped
+/// axis move up by the period, and the nodes on a lower side are replaced by their
+/// partners on the upper side (`partner`, by global node number), so that the patch is
+/// one piece across the side.
+struct Wrap
+{
+  std::array<double, 3> split{};
+  std::array<bool, 3> axis{false, false, false};
+  std::map<std::int64_t, std::int64_t> partner;
+  /// Cells (positions in the list of cells) with a node on a side: ghosted on every rank,
+  /// since ghost_ranks sees a node and its partner as two.
+  std::vector<char> on_side;
+};
+
 /// `cells` (owned cells of `base`) as a mesh of their own, cell i on rank dest[i].
 std::shared_ptr<Mesh> mesh_of_cells(const Mesh& base, std::span<const std::int32_t> cells,
-                                    std::span<const int> dest)
+                                    std::span<const int> dest, const Wrap* wrap = nullptr)
 {
-  const auto ghosts = ghost_ranks(base, cells, dest);
+  auto ghosts = ghost_ranks(base, cells, dest);
+  if (wrap)
+  {
+    int size = 1;
+    MPI_Comm_size(base.comm(), &size);
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      if (wrap->on_side[i])
+        for (int r = 0; r < size; ++r)
+          if (r != dest[i])
+            add_once(ghosts[i], r);
+  }
 
   // The cells by the base geometry's global node numbers, and the coordinates of the
   // nodes this rank owns (create_mesh reads node i from the rank whose block holds it).
@@ -125,6 +152,10 @@ std::shared_ptr<Mesh> mesh_of_cells(const Mesh& base, std::span<const std::int32
     const auto local = dofmap.links(c);
     std::vector<std::int64_t> global(local.size());
     node_map->local_to_global(local, global);
+    if (wrap)
+      for (auto& g : global)
+        if (auto it = wrap->partner.find(g); it != wrap->partner.end())
+          g = it->second;
     nodes.insert(nodes.end(), global.begin(), global.end());
     offsets.push_back(std::int32_t(nodes.size()));
   }
@@ -132,7 +163,11 @@ std::shared_ptr<Mesh> mesh_of_cells(const Mesh& base, std::span<const std::int32
   std::vector<double> x(owned_nodes * gdim);
   for (std::size_t i = 0; i < owned_nodes; ++i)
     for (int d = 0; d < gdim; ++d)
+    {
       x[gdim * i + d] = geometry.x()[3 * i + d];
+      if (wrap && wrap->axis[d] && x[gdim * i + d] < wrap->split[d])
+        x[gdim * i + d] += periods()[d];
+    }
 
   mesh::CellPartitionFunction to_dest
       = [&](MPI_Comm, int, int, const graph::AdjacencyList<std::int64_t>& c, mesh::GhostMode)
@@ -155,7 +190,108 @@ std::shared_ptr<Mesh> mesh_of_cells(const Mesh& base, std::span<const std::int32
 
 std::shared_ptr<Mesh> create_patch(const Mesh& base, const Box& box)
 {
-  return create_patch(base, cells_meeting(base, box));
+  const auto [lo, hi] = bounding_box(base);
+  Wrap wrap;
+  std::vector<int> wrapped; // axes along which the box reaches beyond the upper side
+  for (int a = 0; a < 3; ++a)
+  {
+    const double L = periods()[a];
+    if (L <= 0 || box[3 + a] <= hi[a] + 1e-9 * L || box[a] <= lo[a] + 1e-9 * L)
+      continue; // inside the domain along a, or the whole of it
+    wrap.axis[a] = true;
+    wrap.split[a] = (box[3 + a] - L + box[a]) / 2;
+    wrapped.push_back(a);
+  }
+  if (wrapped.empty())
+    return create_patch(base, cells_meeting(base, box));
+
+  // The cells meeting the box or one of its images a period down along wrapped axes.
+  std::vector<std::int32_t> cells;
+  for (unsigned mask = 0; mask < (1u << wrapped.size()); ++mask)
+  {
+    Box image = box;
+    for (std::size_t k = 0; k < wrapped.size(); ++k)
+      if (mask & (1u << k))
+        image[wrapped[k]] -= periods()[wrapped[k]], image[3 + wrapped[k]] -= periods()[wrapped[k]];
+    for (auto c : cells_meeting(base, image))
+      cells.push_back(c);
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  // Every cell lies on one side of the split (the box's two parts are a cell apart), or a
+  // node would be needed both where it is and a period up.
+  for (auto c : cells)
+  {
+    const auto v = cell_vertex_coordinates(base, c);
+    for (int a : wrapped)
+    {
+      int below = 0, n = 0;
+      for (std::size_t i = a; i < v.size(); i += 3, ++n)
+        below += v[i] < wrap.split[a];
+      if (below != 0 && below != n)
+        throw std::invalid_argument("create_patch: the box is too long to wrap across a periodic side");
+    }
+  }
+
+  // Nodes on an upper side, from every rank: the partners of the nodes on the lower side.
+  const auto& geometry = base.geometry();
+  auto node_map = geometry.index_map();
+  const auto x = geometry.x();
+  auto on = [&](const double* p, int a, double side)
+  { return std::abs(p[a] - side) <= 1e-9 * periods()[a]; };
+  std::vector<double> mine; // rows of x, y, z, global number
+  const std::int32_t num_nodes = node_map->size_local() + node_map->num_ghosts();
+  for (std::int32_t i = 0; i < num_nodes; ++i)
+    for (int a : wrapped)
+      if (on(&x[3 * i], a, hi[a]))
+      {
+        std::int64_t g = 0;
+        node_map->local_to_global(std::span(&i, 1), std::span(&g, 1));
+        mine.insert(mine.end(), {x[3 * i], x[3 * i + 1], x[3 * i + 2], double(g)});
+        break;
+      }
+  int size = 1;
+  MPI_Comm_size(base.comm(), &size);
+  std::vector<int> counts(size), offsets(size + 1, 0);
+  const int count = int(mine.size());
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, base.comm());
+  for (int r = 0; r < size; ++r)
+    offsets[r + 1] = offsets[r] + counts[r];
+  std::vector<double> upper(offsets[size]);
+  MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, upper.data(), counts.data(), offsets.data(),
+                 MPI_DOUBLE, base.comm());
+
+  const auto& dofmap = geometry.dofmap();
+  wrap.on_side.assign(cells.size(), 0);
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    for (std::int32_t node : dofmap.links(cells[i]))
+    {
+      const double* p = &x[3 * node];
+      std::array<double, 3> q{p[0], p[1], p[2]}; // the partner's position
+      bool lower_side = false;
+      for (int a : wrapped)
+      {
+        wrap.on_side[i] = wrap.on_side[i] || on(p, a, lo[a]) || on(p, a, hi[a]);
+        if (on(p, a, lo[a]))
+          q[a] = hi[a], lower_side = true;
+      }
+      if (!lower_side)
+        continue;
+      std::int64_t g = 0;
+      node_map->local_to_global(std::span(&node, 1), std::span(&g, 1));
+      for (std::size_t k = 0; k < upper.size(); k += 4)
+        if (std::abs(upper[k] - q[0]) + std::abs(upper[k + 1] - q[1]) + std::abs(upper[k + 2] - q[2])
+            <= 1e-9 * (hi[0] - lo[0] + hi[1] - lo[1] + hi[2] - lo[2]))
+        {
+          wrap.partner[g] = std::int64_t(upper[k + 3]);
+          break;
+        }
+      if (!wrap.partner.count(g))
+        throw std::runtime_error("create_patch: a node on a periodic side has no partner");
+    }
+  int rank = 0;
+  MPI_Comm_rank(base.comm(), &rank);
+  return mesh_of_cells(base, cells, std::vector<int>(cells.size(), rank), &wrap);
 }
 
 std::shared_ptr<Mesh> create_patch(const Mesh& base, std::span<const std::int32_t> cells)

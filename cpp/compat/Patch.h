@@ -9,7 +9,11 @@ namespace cellphase::compat
 {
 /// The owned cells of `base` that meet `box`, as a mesh of their own. Built by create_mesh
 /// from the base's global node numbers, so nodes and edges on a rank boundary are shared
-/// as in any DOLFINx mesh (DOLFINx 0.5.2's create_submesh does not share them).
+/// as in any DOLFINx mesh (DOLFINx 0.5.2's create_submesh does not share them). A box
+/// that reaches beyond the base's upper side along a periodic axis (compat::set_periods)
+/// gives a wrapped patch: the cells meeting its image a period down are moved up a period
+/// and joined to the others at the side, one piece across it. The box must then be at
+/// least two base cells shorter than the period.
 std::shared_ptr<Mesh> create_patch(const Mesh& base, const Box& box);
 
 /// The given owned cells of `base` (local indices) as a mesh of their own. Cells on two

@@ -4,6 +4,7 @@
 #pragma once
 #include "compat/CellContains.h"
 #include "compat/Dolfinx.h"
+#include "compat/PeriodicImages.h"
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/geometry/utils.h>
 #include <algorithm>
@@ -40,6 +41,24 @@ public:
     round_off_ = 1e-9 * extent;
     for (int d = 0; d < 3; ++d)
       box_[d] -= round_off_, box_[3 + d] += round_off_;
+    // The whole mesh's box (collective), into which points of a periodic domain are moved.
+    if (any_periodic())
+    {
+      mesh_box_ = box_;
+      for (int d = 0; d < 3; ++d)
+        mesh_box_[3 + d] = -mesh_box_[3 + d]; // one MIN reduction for both ends
+      MPI_Allreduce(MPI_IN_PLACE, mesh_box_.data(), 6, MPI_DOUBLE, MPI_MIN, m->comm());
+      for (int d = 0; d < 3; ++d)
+        mesh_box_[3 + d] = -mesh_box_[3 + d];
+    }
+  }
+
+  /// Points moved to their periodic images in this mesh, where they lie outside it along
+  /// a periodic axis (compat/PeriodicImages.h); unchanged without periodic axes.
+  void move_into_mesh(std::span<double> pts) const
+  {
+    if (any_periodic())
+      move_into(pts, mesh_box_);
   }
 
   /// The local cell holding each point (N x 3). Points missed by round-off on cell
@@ -91,6 +110,7 @@ private:
   dolfinx::geometry::BoundingBoxTree tree_;
   mutable std::unique_ptr<dolfinx::geometry::BoundingBoxTree> midpoint_tree_;
   std::array<double, 6> box_{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+  std::array<double, 6> mesh_box_{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
   double round_off_;
 };
 } // namespace cellphase::compat::detail

@@ -31,9 +31,17 @@ std::shared_ptr<const PointLocator> locator_of(std::shared_ptr<const Mesh> mesh)
 PointEvaluator make_evaluator(std::shared_ptr<const Function> u, double outside)
 {
   auto locator = locator_of(u->function_space()->mesh());
-  return [u, locator, outside](std::span<const double> pts, std::span<double> values)
+  return [u, locator, outside](std::span<const double> given, std::span<double> values)
   {
-    const std::size_t n = pts.size() / 3;
+    const std::size_t n = given.size() / 3;
+    std::vector<double> moved;
+    std::span<const double> pts = given;
+    if (any_periodic()) // points beyond a periodic side: their images in u's mesh
+    {
+      moved.assign(given.begin(), given.end());
+      locator->move_into_mesh(moved);
+      pts = moved;
+    }
     auto cells = locator->locate(pts, true);
     u->eval(pts, {n, 3}, cells, values, {n, 1}); // leaves the values of cells -1 untouched
     for (std::size_t i = 0; i < n; ++i)
@@ -61,6 +69,7 @@ Resampler::Resampler(std::shared_ptr<const Function> from, std::shared_ptr<Funct
       points_[3 * i + d] = X[d * n + i];
   auto from_mesh = from->function_space()->mesh();
   auto locator = locator_of(from_mesh);
+  locator->move_into_mesh(points_);
   from_cells_ = locator->locate(points_, true);
   if (PointWeights::applicable(*from->function_space()))
     weights_ = std::make_shared<const PointWeights>(*from->function_space(), points_, from_cells_);
@@ -173,11 +182,11 @@ std::vector<std::int32_t> cells_inside(const Mesh& mesh, std::shared_ptr<const M
     std::array<double, 3> m{0, 0, 0};
     bool in_box = true;
     for (int d = 0; d < 3; ++d)
-    {
       for (std::size_t i = 0; i < nv; ++i)
         m[d] += v[3 * i + d] / double(nv);
+    locator->move_into_mesh(m); // a wrapped patch's part beyond a periodic side
+    for (int d = 0; d < 3; ++d)
       in_box = in_box && m[d] >= box[d] && m[d] <= box[3 + d];
-    }
     if (in_box)
     {
       candidates.push_back(c);

@@ -5,6 +5,7 @@
 // patch's edge, where a point may be held by another rank (compat/RemotePoints.h).
 #pragma once
 #include "compat/Dolfinx.h"
+#include "compat/PeriodicImages.h"
 #include <dolfinx/la/Vector.h>
 #include <array>
 #include <memory>
@@ -16,9 +17,6 @@ namespace detail
 class RemotePoints;
 }
 class PointWeights;
-
-/// Axis-aligned box: lower corner, then upper corner.
-using Box = std::array<double, 6>;
 
 /// Point evaluator of u; points outside u's mesh (beyond round-off) get `outside` (a field
 /// that is constant there, phi = -1 outside a cell's patch). A point outside the local part

@@ -1,5 +1,6 @@
 #include "mesh/BaseMesh.h"
 #include "compat/Patch.h"
+#include "compat/PeriodicImages.h"
 #include "scene/Resolution.h"
 #include <cmath>
 
@@ -21,6 +22,12 @@ int stripe_axis(const scene::Domain& domain)
 
 std::shared_ptr<Mesh> create_partitioned_base_mesh(const scene::Scene& scene, MPI_Comm comm)
 {
+  // The periods of the domain that all meshes from now on are built in (wrapped patches
+  // and the transfers between them and the shared mesh, compat/PeriodicImages.h).
+  std::array<double, 3> periods{0, 0, 0};
+  for (int a : scene.domain.periodic)
+    periods[a] = scene.domain.upper[a] - scene.domain.lower[a];
+  compat::set_periods(periods);
   auto base = compat::create_base_mesh(comm, scene.domain);
   int size = 1;
   MPI_Comm_size(comm, &size);

@@ -22,7 +22,8 @@ public:
   OwnMesh(const scene::Scene& scene, std::shared_ptr<Mesh> base);
 
   /// The patch of base cells meeting `band` (the box of the cell's band phi > own_band_level)
-  /// grown by the margin, refined around the zero level set of phi.
+  /// grown by the margin, refined around the zero level set of phi. Across a periodic side
+  /// the patch is wrapped: its part beyond the side lies a period up (compat::create_patch).
   std::shared_ptr<Mesh> build(const PointEvaluator& phi, const compat::Box& band);
   /// The mesh of an earlier build again (checkpoints): its patch box and history.
   std::shared_ptr<Mesh> replay(const compat::Box& patch_box,
@@ -40,10 +41,16 @@ private:
   std::unique_ptr<AdaptiveMesh> refined_;
 };
 
-/// Whether a cut box covers the whole domain (a cell next to a periodic side, OwnMesh::build):
-/// the "patch" is then the whole domain and has no cut edges.
+/// Whether a cut box covers the whole domain (a cell nearly as long as a periodic side,
+/// OwnMesh::build): the "patch" is then the whole domain and has no cut edges.
 bool covers_domain(const compat::Box& box, const scene::Domain& d);
 
 /// Box of the nodes where f > level over all ranks (empty, min > max, if there are none).
+/// On a mesh that spans a periodic axis, nodes on both sides of the periodic side give a
+/// box across it: its upper end lies beyond the side.
 compat::Box box_above(const Function& f, double level);
+
+/// `box` moved by whole periods along the periodic axes to where it meets `near` or is
+/// closest to it (the boxes of two cells, one of them on a wrapped patch).
+compat::Box image_near(const compat::Box& box, const compat::Box& near, const scene::Domain& d);
 } // namespace cellphase

@@ -12,7 +12,7 @@ namespace cellphase
 {
 InteractionSubProblem::InteractionSubProblem(scene::PlanStep step, const scene::Scene& scene,
                                              MPI_Comm comm)
-    : SubProblem(std::move(step)), comm_(comm), eps_(scene.numerics.epsilon),
+    : SubProblem(std::move(step)), comm_(comm), domain_(scene.domain), eps_(scene.numerics.epsilon),
       interaction_(scene.interaction), groups_(scene::cell_groups(scene)),
       own_(scene::own_meshes(scene))
 {
@@ -184,7 +184,8 @@ void InteractionSubProblem::update_sums()
       B_sum_[i][k]->x()->set(0.0);
     }
     for (std::size_t j = 0; j < n; ++j)
-      if (j != i && boxes_meet(boxes[i], boxes[j]))
+      if (const auto box_j = image_near(boxes[j], boxes[i], domain_);
+          j != i && boxes_meet(boxes[i], box_j))
       {
         // The pair's potential k takes its sums; In_ij enters them as In / In_ij, so that
         // the forms' 1/In makes 1/In_ij of (7.5) and (7.11) (exactly 1 for the scene's In).
@@ -193,7 +194,7 @@ void InteractionSubProblem::update_sums()
         auto w = w_sum_[i][k]->x()->mutable_array();
         auto B = B_sum_[i][k]->x()->mutable_array();
         // Own meshes: only where both bands reach; the source (7.11) has a factor of cell i.
-        const Samples s = sample(i, j, own_ ? common_box(boxes[i], boxes[j]) : boxes[j]);
+        const Samples s = sample(i, j, own_ ? common_box(boxes[i], box_j) : boxes[j]);
         for (std::size_t m = 0; m < s.nodes.size(); ++m)
         {
           w[s.nodes[m]] += scale * interaction_w(s.values[m], eps_, potentials_[k]);
@@ -246,9 +247,10 @@ void InteractionSubProblem::observe(Observation& row)
     auto phi_i = fields_->get(phis_[i])->x()->array();
     for (std::size_t j = i + 1; j < phis_.size(); ++j)
     {
-      if (own_ && !boxes_meet(boxes[i], boxes[j]))
+      const auto box_j = image_near(boxes[j], boxes[i], domain_); // i's side of a periodic side
+      if (own_ && !boxes_meet(boxes[i], box_j))
         continue;
-      const Samples s = sample(i, j, own_ ? common_box(boxes[i], boxes[j]) : boxes[j]);
+      const Samples s = sample(i, j, own_ ? common_box(boxes[i], box_j) : boxes[j]);
       for (std::size_t m = 0; m < s.nodes.size(); ++m)
         worst = std::max(worst, std::min(1 + phi_i[s.nodes[m]], 1 + s.values[m]) / 2);
     }

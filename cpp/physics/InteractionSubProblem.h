@@ -55,6 +55,7 @@ private:
   std::vector<std::array<double, 6>> band_boxes() const;
 
   MPI_Comm comm_;
+  scene::Domain domain_; ///< its periodic axes: the band boxes of two cells a period apart meet
   double eps_;
   std::optional<scene::Interaction> interaction_;
   std::vector<scene::CellGroup> groups_;

@@ -108,7 +108,10 @@ ObservableValues Observables::evaluate() const
   if (!moments_.empty())
   {
     // Central second moments; the major axis is the eigenvector of the larger eigenvalue.
-    const double cx = v.center[0], cy = v.center[1];
+    // About the centre in the mesh's own coordinates (not moved into the domain: a wrapped
+    // patch's cell may lie beyond a periodic side).
+    const double cx = compat::assemble_scalar(*com_[0]) / v.volume;
+    const double cy = compat::assemble_scalar(*com_[1]) / v.volume;
     const double ixx = compat::assemble_scalar(*moments_[0]) / v.volume - cx * cx;
     const double ixy = compat::assemble_scalar(*moments_[1]) / v.volume - cx * cy;
     const double iyy = compat::assemble_scalar(*moments_[2]) / v.volume - cy * cy;

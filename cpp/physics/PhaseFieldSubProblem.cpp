@@ -122,8 +122,8 @@ void PhaseFieldSubProblem::attach(FieldRegistry& fields)
     patch_volume_ = mesh_volume(module_.space());
     shared_volume_ = mesh_volume(fields.space("", FieldSpace::scalar_p2));
     cut_box_ = fields.cut_box(group_.prefix).value();
-    // Next to a periodic side the cell's mesh is the whole domain (OwnMesh::build): no cut
-    // edges, phi advected as on the shared mesh.
+    // A cell nearly as long as a periodic side has the whole domain as its mesh
+    // (OwnMesh::build): no cut edges, phi advected as on the shared mesh.
     whole_domain_ = covers_domain(cut_box_, scene_.domain);
     module_.set_patch_edges(!whole_domain_);
     if (cell_volume_target_ >= 0) // int phi over this patch for the same int (1 + phi)
@@ -364,7 +364,8 @@ std::string PhaseFieldSubProblem::patch_problem() const
   // margin: beyond, phi is no longer -1 where the mesh ends. (A side of the box beyond a
   // wall is never approached: the band stays inside the domain.)
   const double margin = scene_.numerics.mesh.own_margin_or_default(scene_.numerics.epsilon);
-  const auto band = box_above(*module_.fields().at("phi"), own_band_level);
+  const auto band = image_near(box_above(*module_.fields().at("phi"), own_band_level), cut_box_,
+                               scene_.domain);
   double gap = 1e300;
   for (int a = 0; a < scene_.domain.dim; ++a)
     gap = std::min({gap, band[a] - cut_box_[a], cut_box_[3 + a] - band[3 + a]});

@@ -104,8 +104,10 @@ void PolarGelSubProblem::set_initial(Function& P) const
   const double centre = (dom.lower[0] + dom.upper[0]) / 2;
   const double centre_y = (dom.lower[1] + dom.upper[1]) / 2;
   const std::array<double, 2> n{-d[1], d[0]}; // the splay's direction, d turned by +90 degrees
-  compat::interpolate_vector(P, [&](double x, double y, double)
+  compat::interpolate_vector(P, [&](double x_node, double y_node, double)
   {
+    // A wrapped patch's nodes beyond a periodic side take the values a period down.
+    const auto [x, y, z] = dom.into_period(x_node, y_node, 0);
     const double xs = gel_.mirror ? snap(2 * centre - x) : x;
     const double fan = gel_.splay * ((xs - centre) * n[0] + (y - centre_y) * n[1]);
     const double px = d[0] + fan * n[0] + delta(1, xs, y), py = d[1] + fan * n[1] + delta(2, xs, y);

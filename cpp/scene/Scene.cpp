@@ -30,6 +30,18 @@ bool Domain::is_periodic(int axis) const
   return std::find(periodic.begin(), periodic.end(), axis) != periodic.end();
 }
 
+std::array<double, 3> Domain::into_period(double x, double y, double z) const
+{
+  std::array<double, 3> p{x, y, z};
+  for (int a : periodic)
+  {
+    const double L = upper[a] - lower[a];
+    if (p[a] >= upper[a] || p[a] < lower[a])
+      p[a] -= std::floor((p[a] - lower[a]) / L) * L;
+  }
+  return p;
+}
+
 const char* to_string(Model m)
 {
   switch (m)
