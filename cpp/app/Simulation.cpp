@@ -165,12 +165,7 @@ Simulation::LoopState Simulation::initialise()
   {
     // Each phase field from its own cells, (7.3), on the mesh its state lives on.
     scene::InitialPhaseField own(scene::group_scene(scene_, group));
-    const auto& domain = scene_.domain; // a wrapped patch's nodes beyond a periodic side
-    auto formula = [&own, &domain](double x, double y, double z)
-    {
-      const auto p = domain.into_period(x, y, z);
-      return own(p[0], p[1], p[2]);
-    };
+    auto formula = [&own](double x, double y, double z) { return own(x, y, z); };
     const std::string name = scene::state_field(scene_, group, "phi");
     const std::string& key = fields_.info(name).mesh;
     if (!key.empty())
@@ -178,10 +173,10 @@ Simulation::LoopState Simulation::initialise()
       // Its own mesh around its band, found at the nodes of the shared mesh (refined there).
       auto probe = std::make_shared<Function>(fields_.space("", FieldSpace::scalar_p2));
       compat::interpolate(*probe, formula);
-      PointEvaluator cell = [&formula](std::span<const double> pts, std::span<double> values)
+      PointEvaluator cell = [&own](std::span<const double> pts, std::span<double> values)
       {
         for (std::size_t i = 0; i < values.size(); ++i)
-          values[i] = formula(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
+          values[i] = own(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
       };
       auto& own_mesh = own_meshes_.at(key);
       auto patch = own_mesh.build(cell, box_above(*probe, own_band_level));

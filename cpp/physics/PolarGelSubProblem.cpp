@@ -106,9 +106,11 @@ void PolarGelSubProblem::set_initial(Function& P) const
   const std::array<double, 2> n{-d[1], d[0]}; // the splay's direction, d turned by +90 degrees
   compat::interpolate_vector(P, [&](double x_node, double y_node, double)
   {
-    // A wrapped patch's nodes beyond a periodic side take the values a period down.
-    const auto [x, y, z] = dom.into_period(x_node, y_node, 0);
-    const double xs = gel_.mirror ? snap(2 * centre - x) : x;
+    // Mirrored first, then into the period: a node and its mirror image take the same
+    // noise, also on the periodic side (x = upper is x = lower) and beyond it on a
+    // wrapped patch's nodes, which take the values a period down.
+    const double mirrored = gel_.mirror ? snap(2 * centre - x_node) : x_node;
+    const auto [xs, y, z] = dom.into_period(mirrored, y_node, 0);
     const double fan = gel_.splay * ((xs - centre) * n[0] + (y - centre_y) * n[1]);
     const double px = d[0] + fan * n[0] + delta(1, xs, y), py = d[1] + fan * n[1] + delta(2, xs, y);
     return std::array<double, 3>{gel_.mirror ? -px : px, py, 0};

@@ -35,8 +35,10 @@ std::array<double, 3> Domain::into_period(double x, double y, double z) const
   std::array<double, 3> p{x, y, z};
   for (int a : periodic)
   {
-    const double L = upper[a] - lower[a];
-    if (p[a] >= upper[a] || p[a] < lower[a])
+    const double L = upper[a] - lower[a], round_off = 1e-9 * L;
+    // The sides and round-off around them stay: a node of the shared mesh keeps its own
+    // coordinates (its random start, PolarGelSubProblem, is hashed from them).
+    if (p[a] > upper[a] + round_off || p[a] < lower[a] - round_off)
       p[a] -= std::floor((p[a] - lower[a]) / L) * L;
   }
   return p;

@@ -28,8 +28,9 @@ struct Domain
   std::string mesh_file;
   std::shared_ptr<const MeshDomain> mesh;
   bool is_periodic(int axis) const;
-  /// The point moved by whole periods into [lower, upper) along the periodic axes (a node
-  /// of a cell's patch wrapped across a periodic side lies a period up).
+  /// The point moved by whole periods into [lower, upper] along the periodic axes where it
+  /// lies beyond a side by more than round-off (a node of a cell's patch wrapped across a
+  /// periodic side lies a period up); points within the period are returned unchanged.
   std::array<double, 3> into_period(double x, double y, double z) const;
   double volume() const;
   /// The longest side of the box (of the bounding box for a mesh file): the length that

@@ -332,37 +332,60 @@ std::string check_expression(const std::string& expression)
   return {};
 }
 
-InitialPhaseField::InitialPhaseField(const Scene& s) : epsilon_(s.numerics.epsilon)
+InitialPhaseField::InitialPhaseField(const Scene& s)
+    : domain_(s.domain), epsilon_(s.numerics.epsilon)
 {
   for (const Cell& c : s.cells)
     cells_.emplace_back(c, s.domain.dim);
 }
 
+std::vector<std::array<double, 3>> InitialPhaseField::images(double x, double y, double z) const
+{
+  std::vector<std::array<double, 3>> points{{x, y, z}};
+  for (int a : domain_.periodic)
+  {
+    const double L = domain_.upper[a] - domain_.lower[a];
+    const std::size_t n = points.size();
+    for (std::size_t i = 0; i < n; ++i)
+      for (double shift : {-L, L})
+      {
+        auto q = points[i];
+        q[a] += shift;
+        points.push_back(q);
+      }
+  }
+  return points;
+}
+
 double InitialPhaseField::distance(double x, double y, double z) const
 {
   double r = INFINITY;
-  for (const SignedDistance& d : cells_)
-    r = std::min(r, d(x, y, z));
+  for (const auto& p : images(x, y, z))
+    for (const SignedDistance& d : cells_)
+      r = std::min(r, d(p[0], p[1], p[2]));
   return r;
 }
 
 double InitialPhaseField::operator()(double x, double y, double z) const
 {
   // max_i tanh(-r_i/(sqrt2 eps)) = tanh(-min_i r_i/(sqrt2 eps)): tanh is monotone. A field
-  // cell gives its phi_0 itself (exactly, not through atanh and tanh).
+  // cell gives its phi_0 itself (exactly, not through atanh and tanh), at the point's image
+  // in the domain (its formula or file describes the domain).
   double phi = -INFINITY;
   bool shapes = false;
+  const auto in_domain = domain_.into_period(x, y, z);
   for (const SignedDistance& d : cells_)
     if (d.is_field())
-      phi = std::max(phi, d.phi_value(x, y, z));
+      phi = std::max(phi, d.phi_value(in_domain[0], in_domain[1], in_domain[2]));
     else
       shapes = true;
   if (shapes)
   {
     double r = INFINITY;
-    for (const SignedDistance& d : cells_)
-      if (!d.is_field())
-        r = std::min(r, d(x, y, z));
+    for (const auto& p : images(x, y, z))
+      for (const SignedDistance& d : cells_)
+        if (!d.is_field())
+          r = std::min(r, d(p[0], p[1], p[2]));
     phi = std::max(phi, std::tanh(-r / (std::sqrt(2.0) * epsilon_)));
   }
   return phi;

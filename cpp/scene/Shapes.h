@@ -58,7 +58,10 @@ private:
 /// otherwise muparser's message.
 std::string check_expression(const std::string& expression);
 
-/// phi_0 = max over cells of tanh(-r_i / (sqrt2 eps)): +1 inside cells, -1 outside.
+/// phi_0 = max over cells of tanh(-r_i / (sqrt2 eps)): +1 inside cells, -1 outside. On a
+/// periodic domain r_i is the distance to the nearest periodic image of cell i, so that a
+/// cell near a periodic side reaches across it, and a point beyond a side (a node of a
+/// wrapped patch, compat/Patch.h) takes the value of its image in the domain.
 class InitialPhaseField
 {
 public:
@@ -68,7 +71,10 @@ public:
   double distance(double x, double y, double z = 0) const;
 
 private:
+  /// The point's images a period either way along each periodic axis, itself first.
+  std::vector<std::array<double, 3>> images(double x, double y, double z) const;
   std::vector<SignedDistance> cells_;
+  Domain domain_;
   double epsilon_;
 };
 

@@ -540,6 +540,25 @@ TEST(SceneShapes, InitialPhaseField)
   EXPECT_NEAR(phi2(-1.9, 1.9), -1, 1e-6);
 }
 
+TEST(SceneShapes, InitialPhaseFieldReachesAcrossAPeriodicSide)
+{
+  // A circle of radius 1 at x = 1.5 in [-2, 2] periodic in x: its image at x = -2.5 reaches
+  // 0.5 across the side x = -2, and a point beyond x = 2 (a wrapped patch's node) takes
+  // the value of its image a period down.
+  Scene s = parse_scene(minimal_scene, "min.yaml");
+  s.domain.periodic = {0};
+  s.cells[0].center = {1.5, 0, 0};
+  const InitialPhaseField phi(s);
+  const double eps = s.numerics.epsilon;
+  EXPECT_NEAR(phi(-1.9, 0), std::tanh(0.4 / (std::sqrt(2.0) * eps)), 1e-12); // 0.6 from -2.5
+  EXPECT_NEAR(phi(-1.9, 0), phi(2.1, 0), 1e-12);
+  EXPECT_NEAR(phi(2.3, 0.4), phi(-1.7, 0.4), 1e-12);
+  EXPECT_NEAR(phi.distance(-1.9, 0), -0.4, 1e-12);
+  // Not across the walls in y.
+  s.cells[0].center = {0, 1.5, 0};
+  EXPECT_NEAR(InitialPhaseField(s)(0, -1.9), -1, 1e-9);
+}
+
 // ---------------- resolution ----------------
 
 TEST(SceneResolution, LevelsAndSizes)
