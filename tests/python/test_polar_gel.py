@@ -184,7 +184,7 @@ def test_own_mesh_across_a_periodic_side_is_a_wrapped_patch(tmp_path):
     inside), 4 base cells apart, have the same patches; P^0 = (1, 0) inside the cell (no
     noise, no splay seed), so that the start is the same. The flow's meshes differ (both
     periodic faces are refined while a cell is near one), and with them the flow and the
-    cell's copy on that mesh: centre 1.8e-6, volume 3.2e-7 (relative), v_cell 1.5e-6 apart
+    cell's copy on that mesh: centre 6.5e-8, volume 6e-15 (relative), v_cell 1.3e-6 apart
     (seen), asserted 1e-5. A patch whose part beyond the side were lost or misplaced would
     miss a third of the cell."""
     runs = {}
