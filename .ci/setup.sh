@@ -14,6 +14,7 @@ packages=(
   libgtest-dev                         # C++ tests
   gmsh                                 # meshes/*.geo -> XDMF at build time
   python3-pytest python3-yaml python3-numpy python3-matplotlib python3-h5py  # tests, plots
+  python3-pytest-xdist                 # the Python tests on every core, a test file per worker
   libopenblas0-pthread                 # optimised BLAS for MUMPS (see benchmarks/)
   paraview python3-paraview xvfb xauth # tests: the output opened by pvpython, rendered off-screen
   python3-meshio                       # tests: the output read by meshio
