@@ -26,10 +26,12 @@ from cellphase_results import read_fields  # noqa: E402
 def last_fields(run_dir):
     """Points, triangles, phi and time of the last output of RUN_DIR (fields.xdmf, or the
     VTK index), read by the project's reader."""
-    frames = list(read_fields(run_dir, fields=["phi"]))
-    if not frames:
+    last = None
+    for last in read_fields(run_dir, fields=["phi"]):
+        pass  # keep only the last frame: a long run's frames need not fit in memory
+    if last is None:
         sys.exit(f"phase_field_budget: {run_dir} has no output frames")
-    time, points, cells, values = frames[-1]
+    time, points, cells, values = last
     if "phi" not in values:
         sys.exit(f"phase_field_budget: {run_dir} has no field phi at t = {time:g}")
     if cells.shape[1] != 3:

@@ -337,33 +337,35 @@ InitialPhaseField::InitialPhaseField(const Scene& s)
 {
   for (const Cell& c : s.cells)
     cells_.emplace_back(c, s.domain.dim);
-}
-
-std::vector<std::array<double, 3>> InitialPhaseField::images(double x, double y, double z) const
-{
-  std::vector<std::array<double, 3>> points{{x, y, z}};
+  image_shifts_.push_back({0.0, 0.0, 0.0});
   for (int a : domain_.periodic)
   {
     const double L = domain_.upper[a] - domain_.lower[a];
-    const std::size_t n = points.size();
+    const std::size_t n = image_shifts_.size();
     for (std::size_t i = 0; i < n; ++i)
       for (double shift : {-L, L})
       {
-        auto q = points[i];
+        auto q = image_shifts_[i];
         q[a] += shift;
-        points.push_back(q);
+        image_shifts_.push_back(q);
       }
   }
-  return points;
+}
+
+double InitialPhaseField::nearest_image_distance(double x, double y, double z,
+                                                 bool shapes_only) const
+{
+  double r = INFINITY;
+  for (const auto& s : image_shifts_)
+    for (const SignedDistance& d : cells_)
+      if (!(shapes_only && d.is_field()))
+        r = std::min(r, d(x + s[0], y + s[1], z + s[2]));
+  return r;
 }
 
 double InitialPhaseField::distance(double x, double y, double z) const
 {
-  double r = INFINITY;
-  for (const auto& p : images(x, y, z))
-    for (const SignedDistance& d : cells_)
-      r = std::min(r, d(p[0], p[1], p[2]));
-  return r;
+  return nearest_image_distance(x, y, z, false);
 }
 
 double InitialPhaseField::operator()(double x, double y, double z) const
@@ -381,11 +383,7 @@ double InitialPhaseField::operator()(double x, double y, double z) const
       shapes = true;
   if (shapes)
   {
-    double r = INFINITY;
-    for (const auto& p : images(x, y, z))
-      for (const SignedDistance& d : cells_)
-        if (!d.is_field())
-          r = std::min(r, d(p[0], p[1], p[2]));
+    const double r = nearest_image_distance(x, y, z, true);
     phi = std::max(phi, std::tanh(-r / (std::sqrt(2.0) * epsilon_)));
   }
   return phi;

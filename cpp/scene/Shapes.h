@@ -71,11 +71,15 @@ public:
   double distance(double x, double y, double z = 0) const;
 
 private:
-  /// The point's images a period either way along each periodic axis, itself first.
-  std::vector<std::array<double, 3>> images(double x, double y, double z) const;
+  /// Smallest signed distance from (x, y, z) or any of its images to a cell; only the
+  /// shape cells (not the field cells) when `shapes_only`.
+  double nearest_image_distance(double x, double y, double z, bool shapes_only) const;
   std::vector<SignedDistance> cells_;
   Domain domain_;
   double epsilon_;
+  /// Shifts to a point's images a period either way along each periodic axis, the zero
+  /// shift first (fixed by the domain, so built once).
+  std::vector<std::array<double, 3>> image_shifts_;
 };
 
 } // namespace cellphase::scene
