@@ -1,7 +1,7 @@
 """Fuzzed runs (issue 18, item 2): 100 mutations of seven small scenes (numbers scaled or
 made nonsensical, models swapped, boundary kinds changed, flow sections dropped or added,
 mesh keys changed) each run for two steps on a coarse mesh (a valid mutation that asks for
-more than 1e5 degrees of freedom is checked, not run). None may crash, hang or print
+more than 5e4 degrees of freedom is checked, not run). None may crash, hang or print
 a trace: each finishes (exit 0), stops with an `error:` message naming the problem (exit
 2), or stops with a numerical-failure message (exit 3) that leaves readable output."""
 import concurrent.futures
@@ -131,7 +131,11 @@ def mutate(rng, base):
     return doc
 
 
-MAX_DOFS = 1e5  # a valid mutation may ask for a fine 3D mesh: such scenes are only checked
+# A valid mutation may ask for a fine (3D) mesh: such scenes are only checked. Below this
+# every run of the seeded mutations takes under 4 s; the one 3D Helfrich scene estimated
+# at 1e5 dofs took 87 s, half of the whole test, for two steps of the 3D H^-1 Helfrich flow
+# that test_sphere_3d.py runs on a coarser mesh.
+MAX_DOFS = 5e4
 
 
 def run(args):
