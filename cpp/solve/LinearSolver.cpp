@@ -44,14 +44,16 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix,
   if (symmetry == Symmetry::general)
   {
     // Unsymmetric LU (the Taylor phase field, Navier-Stokes): MUMPS's automatic choice
-    // recomputes an iterative row/column scaling at every factorisation (about 20 % of a
-    // refactorisation here) and orders with PORD, whose analysis after each remesh costs
-    // as much as three factorisations and runs on one rank. AMF analyses in a fraction of
-    // that, fills a few per cent less than AMD/QAMD, and its tree splits better over two
-    // ranks (vesicle: refactorisations 1.6x faster on 2 ranks, QAMD 1.45x); the unscaled
-    // finite element matrices factorise to the same solution (benchmarks/vesicle_benchmark.py).
+    // orders with PORD, whose analysis after each remesh costs as much as three
+    // factorisations and runs on one rank. AMF analyses in a fraction of that, fills a few
+    // per cent less than AMD/QAMD, and its tree splits better over two ranks (vesicle:
+    // refactorisations 1.6x faster on 2 ranks, QAMD 1.45x; benchmarks/vesicle_benchmark.py).
     all["mat_mumps_icntl_7"] = "2";
-    all["mat_mumps_icntl_8"] = "0";
+    // Rows and columns scaled iteratively (7), not by the automatic choice (77, about 20 %
+    // of a refactorisation): the H^-1 flow with a small mobility (the RBCs, gamma = 1e-7)
+    // has pivots far below its columns' largest entries, which MUMPS delays when unscaled
+    // (factorisations 3x slower); elsewhere the scaling costs about 2 %.
+    all["mat_mumps_icntl_8"] = "7";
   }
   for (const auto& [k, v] : options)
     all[k] = v;
