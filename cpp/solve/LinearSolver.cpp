@@ -50,9 +50,9 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix,
     // refactorisations 1.6x faster on 2 ranks, QAMD 1.45x; benchmarks/vesicle_benchmark.py).
     all["mat_mumps_icntl_7"] = "2";
     // Rows and columns scaled iteratively (7), not by the automatic choice (77, about 20 %
-    // of a refactorisation): the H^-1 flow with a small mobility (the RBCs, gamma = 1e-7)
-    // has pivots far below its columns' largest entries, which MUMPS delays when unscaled
-    // (factorisations 3x slower); elsewhere the scaling costs about 2 %.
+    // of a refactorisation): the H^-1 flow with a small mobility (an RBC, gamma = 1e-7) in
+    // the thesis' plain split has pivots far below its columns' largest entries, which
+    // MUMPS delays when unscaled (factorisations 3x slower); elsewhere it costs about 2 %.
     all["mat_mumps_icntl_8"] = "7";
   }
   for (const auto& [k, v] : options)
